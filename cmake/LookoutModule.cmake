@@ -1,0 +1,43 @@
+# lookout_module(NAME DEPS <targets...> [TEST_DEPS ...] [EXCLUDE files...] [EXTRA_SOURCES ...])
+#
+# One library target per module folder: every *.cc in the folder except *_test.cc is the
+# library; every *_test.cc beside it is a GoogleTest case linked into one test program per
+# module (lookout_<NAME>_test). Globbing keeps "one concept per file pair, its test beside it"
+# free of CMake edits; CONFIGURE_DEPENDS re-globs when files are added.
+
+set(LOOKOUT_WARNINGS -Wall -Wextra -Wpedantic -Wconversion -Wsign-conversion -Wshadow
+    -Wnon-virtual-dtor -Wold-style-cast -Wcast-align -Woverloaded-virtual -Wnull-dereference
+    -Wdouble-promotion -Werror)
+
+function(lookout_apply_flags target)
+  target_compile_options(${target} PRIVATE ${LOOKOUT_WARNINGS})
+  if(LOOKOUT_SANITIZE)
+    target_compile_options(${target} PUBLIC -fsanitize=address,undefined -fno-sanitize-recover=all
+                                            -fno-omit-frame-pointer)
+    target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+function(lookout_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS;EXCLUDE;EXTRA_SOURCES" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+  foreach(item IN LISTS tests ARG_EXCLUDE)
+    list(REMOVE_ITEM sources ${item})
+  endforeach()
+  add_library(lookout_${name} ${sources} ${ARG_EXTRA_SOURCES})
+  add_library(lookout::${name} ALIAS lookout_${name})
+  target_include_directories(lookout_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(lookout_${name} PUBLIC ${ARG_DEPS})
+  lookout_apply_flags(lookout_${name})
+  if(LOOKOUT_TESTS AND tests)
+    add_executable(lookout_${name}_test ${tests})
+    target_link_libraries(lookout_${name}_test PRIVATE lookout_${name} ${ARG_TEST_DEPS}
+                          GTest::gtest GTest::gmock GTest::gtest_main)
+    target_compile_definitions(lookout_${name}_test PRIVATE
+                               LOOKOUT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+    lookout_apply_flags(lookout_${name}_test)
+    gtest_discover_tests(lookout_${name}_test DISCOVERY_TIMEOUT 60
+                         PROPERTIES ENVIRONMENT "LOOKOUT_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  endif()
+endfunction()
