@@ -1,0 +1,57 @@
+#pragma once
+
+// Ground truth: what really happened in the simulated world, for scoring every stage.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lookout/core/grid_geometry.h"
+#include "lookout/core/object_class.h"
+#include "lookout/core/time.h"
+#include "lookout/sim/shapes.h"
+#include "lookout/sim/trajectory.h"
+
+namespace lookout::sim {
+
+struct ActorTruth {
+  int index = 0;  // in Scenario::actors
+  std::string id;
+  ObjectClass object_class = ObjectClass::kCar;
+  KinematicState state;
+  Shape footprint;  // world frame
+  double visible_fraction_lidar = 0.0;   // share of the beams that would hit it, that do
+  double visible_fraction_stereo = 0.0;  // the same for the camera's ray fan
+  // Scenario time at which the actor's footprint first touches the ego's, if it ever does.
+  std::optional<double> contact_time_s;
+};
+
+struct EgoTruth {
+  KinematicState state;
+  Shape footprint;
+};
+
+struct TruthFrame {
+  TimeNs stamp = 0;
+  EgoTruth ego;
+  std::vector<ActorTruth> actors;  // only the actors present at `stamp`
+};
+
+// True occupancy and velocity per cell, for any grid geometry (world frame).
+struct TruthRaster {
+  GridGeometry geometry;
+  std::vector<std::uint8_t> occupied;    // 1 when the cell centre lies inside a shape
+  std::vector<Eigen::Vector2f> velocity;  // of the rigid body at the cell centre, m/s
+  std::vector<int> owner;                 // kStaticOwner, an actor index, or -2 for free
+};
+
+inline constexpr int kFreeCell = -2;
+
+// Rasterises actors (moving) and the static world (still) onto `geometry`. The ego is not
+// included: it is the observer. Velocity at a cell centre c of a body with centre p, velocity
+// v and yaw rate w is v + w x (c - p).
+TruthRaster RasteriseTruth(const TruthFrame& frame, const std::vector<Shape>& static_world,
+                           const GridGeometry& geometry);
+
+}  // namespace lookout::sim
