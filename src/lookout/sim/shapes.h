@@ -22,13 +22,32 @@ struct Shape {
   int owner = kStaticOwner;
 
   static Shape Circle(const Eigen::Vector2d& center, double radius, int owner);
+  // At least 3 vertices; consecutive duplicates and collinear vertices are allowed.
   static Shape Polygon(std::vector<Eigen::Vector2d> vertices, int owner);
   // A box of `length` along the pose's x axis and `width` along its y axis, centred on it.
+  // Vertices counter-clockwise from the rear right corner: rear right, front right, front
+  // left, rear left.
   static Shape Box(const Pose2& pose, double length, double width, int owner);
 };
 
+// Shapes are closed sets: a point on the boundary is contained, and shapes that only touch
+// overlap. Exact up to the rounding of the orientation tests (no robust predicates): a point
+// within about 1e-15 relative of a boundary may go either way.
 bool Contains(const Shape& shape, const Eigen::Vector2d& point);
-// True when the two shapes share any point (convex polygons and circles: exact).
+// True when the two shapes share any point. Circles and convex polygons: distance tests and
+// the separating axis theorem. Non-convex (simple) polygons: edge intersection plus
+// containment of one vertex, which is exact as well.
 bool Overlap(const Shape& a, const Shape& b);
+
+// Axis-aligned bounding box of a shape, world frame, metres.
+struct Aabb {
+  Eigen::Vector2d min = Eigen::Vector2d::Zero();
+  Eigen::Vector2d max = Eigen::Vector2d::Zero();
+  bool Intersects(const Aabb& o) const {
+    return min.x() <= o.max.x() && o.min.x() <= max.x() && min.y() <= o.max.y() &&
+           o.min.y() <= max.y();
+  }
+};
+Aabb BoundingBox(const Shape& shape);
 
 }  // namespace lookout::sim

@@ -50,7 +50,10 @@ inline constexpr int kFreeCell = -2;
 
 // Rasterises actors (moving) and the static world (still) onto `geometry`. The ego is not
 // included: it is the observer. Velocity at a cell centre c of a body with centre p, velocity
-// v and yaw rate w is v + w x (c - p).
+// v and yaw rate w is v + w x (c - p). A cell is occupied when its centre lies in a shape
+// (boundary included). Where shapes overlap, actors win over the static world and a later
+// actor in `frame.actors` over an earlier one; a cell has one owner and its velocity.
+// Cost: each shape visits only the cells of its bounding box.
 TruthRaster RasteriseTruth(const TruthFrame& frame, const std::vector<Shape>& static_world,
                            const GridGeometry& geometry);
 
