@@ -40,11 +40,14 @@ class McapWriter {
 
   // Returns the schema id (>= 1). `encoding` e.g. "jsonschema"; `data` the schema text.
   std::uint16_t AddSchema(std::string_view name, std::string_view encoding, std::string_view data);
-  // Returns the channel id. `message_encoding` e.g. "json". schema_id 0 means schemaless.
+  // Returns the channel id (>= 1). `message_encoding` e.g. "json". schema_id 0 means schemaless.
+  // Schema and Channel records go into the open chunk and again into the summary.
   std::uint16_t AddChannel(std::uint16_t schema_id, std::string_view topic,
                            std::string_view message_encoding,
                            const std::unordered_map<std::string, std::string>& metadata = {});
-  // Messages may come in any log-time order; chunk and summary times are kept right.
+  // Messages may come in any log-time order; chunk and summary times are kept right. Each
+  // message's MCAP sequence number is its index among its channel's messages (0, 1, 2, ...).
+  // Throws std::invalid_argument for an unknown channel or a negative time.
   void Write(std::uint16_t channel_id, TimeNs log_time, TimeNs publish_time,
              std::string_view data);
   // Flushes the last chunk, writes the summary and footer, renames PATH.part to PATH.
