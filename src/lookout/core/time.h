@@ -12,7 +12,9 @@ using TimeNs = std::int64_t;
 
 inline constexpr TimeNs kNanosPerSecond = 1'000'000'000;
 
-inline double ToSeconds(TimeNs t) { return static_cast<double>(t) * 1e-9; }
+// Division, not multiplication by 1e-9: it is correctly rounded, so a stamp that is exactly a
+// frame time gives exactly that frame time in seconds.
+inline double ToSeconds(TimeNs t) { return static_cast<double>(t) / 1e9; }
 
 inline TimeNs FromSeconds(double seconds) {
   return static_cast<TimeNs>(std::llround(seconds * 1e9));
