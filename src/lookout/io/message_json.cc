@@ -1,0 +1,333 @@
+#include "lookout/io/message_json.h"
+
+#include <cmath>
+#include <limits>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::io {
+namespace {
+
+using nlohmann::json;
+
+json QuaternionFromYaw(double yaw) {
+  return {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(yaw / 2.0)}, {"w", std::cos(yaw / 2.0)}};
+}
+
+json Pose3FromPose2(const Pose2& p) {
+  return {{"position", {{"x", p.x()}, {"y", p.y()}, {"z", 0.0}}},
+          {"orientation", QuaternionFromYaw(p.yaw)}};
+}
+
+json Color(double r, double g, double b, double a) {
+  return {{"r", r}, {"g", g}, {"b", b}, {"a", a}};
+}
+
+json Mount(const Pose2& p) { return {{"x", p.x()}, {"y", p.y()}, {"yaw", p.yaw}}; }
+
+json StateToJson(const sim::KinematicState& s) {
+  const Eigen::Vector2d v = s.Velocity();
+  return {{"x", s.pose.x()},           {"y", s.pose.y()},
+          {"yaw", s.pose.yaw},         {"speed", s.speed_mps},
+          {"yaw_rate", s.yaw_rate_radps}, {"acceleration", s.acceleration_mps2},
+          {"vx", v.x()},               {"vy", v.y()}};
+}
+
+json FootprintToJson(const sim::Shape& shape) {
+  if (shape.kind == sim::Shape::Kind::kCircle) {
+    return {{"circle", {{"x", shape.center.x()}, {"y", shape.center.y()}, {"radius", shape.radius}}}};
+  }
+  json ring = json::array();
+  for (const Eigen::Vector2d& v : shape.vertices) ring.push_back({v.x(), v.y()});
+  return {{"polygon", ring}};
+}
+
+// Field access that names the field in the error, for the readers below.
+const json& Field(const json& j, const char* name, const std::string& source) {
+  if (!j.is_object() || !j.contains(name)) {
+    throw InputError(source, 0, name, "missing field");
+  }
+  return j.at(name);
+}
+
+double NumberField(const json& j, const char* name, const std::string& source) {
+  const json& f = Field(j, name, source);
+  if (!f.is_number()) throw InputError(source, 0, name, "expected a number");
+  return f.get<double>();
+}
+
+Pose2 MountFromJson(const json& j, const std::string& source) {
+  const json& m = Field(j, "mount", source);
+  return Pose2(NumberField(m, "x", source), NumberField(m, "y", source),
+               NumberField(m, "yaw", source));
+}
+
+}  // namespace
+
+json TimeToJson(TimeNs t) {
+  return {{"sec", t / kNanosPerSecond}, {"nsec", t % kNanosPerSecond}};
+}
+
+TimeNs TimeFromJson(const json& j, const std::string& source) {
+  const json& sec = Field(j, "sec", source);
+  const json& nsec = Field(j, "nsec", source);
+  if (!sec.is_number_integer() || !nsec.is_number_integer()) {
+    throw InputError(source, 0, "timestamp", "sec and nsec must be integers");
+  }
+  return sec.get<TimeNs>() * kNanosPerSecond + nsec.get<TimeNs>();
+}
+
+json LidarScanToJson(const LidarScan& scan, const std::string& frame_id) {
+  json ranges = json::array();
+  for (const float r : scan.ranges_m) {
+    // JSON has no infinity: a beam without a return is null (see the schema).
+    if (std::isfinite(r)) {
+      ranges.push_back(r);
+    } else {
+      ranges.push_back(nullptr);
+    }
+  }
+  const double end_angle =
+      scan.ranges_m.empty() ? scan.angle_min_rad : scan.BeamAngle(scan.ranges_m.size() - 1);
+  return {{"timestamp", TimeToJson(scan.stamp)},
+          {"frame_id", frame_id},
+          {"pose", Pose3FromPose2(Pose2())},
+          {"start_angle", scan.angle_min_rad},
+          {"end_angle", end_angle},
+          {"angle_increment", scan.angle_increment_rad},
+          {"range_max", scan.max_range_m},
+          {"ranges", std::move(ranges)},
+          {"intensities", json::array()},
+          {"mount", Mount(scan.mount)}};
+}
+
+LidarScan LidarScanFromJson(const json& j, const std::string& source) {
+  LidarScan scan;
+  scan.stamp = TimeFromJson(Field(j, "timestamp", source), source);
+  scan.angle_min_rad = NumberField(j, "start_angle", source);
+  scan.angle_increment_rad = NumberField(j, "angle_increment", source);
+  scan.max_range_m = NumberField(j, "range_max", source);
+  scan.mount = MountFromJson(j, source);
+  const json& ranges = Field(j, "ranges", source);
+  if (!ranges.is_array()) throw InputError(source, 0, "ranges", "expected an array");
+  scan.ranges_m.reserve(ranges.size());
+  for (const json& r : ranges) {
+    if (r.is_null()) {
+      scan.ranges_m.push_back(std::numeric_limits<float>::infinity());
+    } else if (r.is_number()) {
+      scan.ranges_m.push_back(r.get<float>());
+    } else {
+      throw InputError(source, 0, "ranges", "expected numbers or null");
+    }
+  }
+  return scan;
+}
+
+json StereoFrameToJson(const StereoFrame& frame, const std::string& frame_id) {
+  json objects = json::array();
+  for (const StereoObject& o : frame.objects) {
+    const Eigen::Matrix2d& c = o.center_covariance;
+    objects.push_back({{"id", o.id},
+                       {"class", std::string(ToString(o.object_class))},
+                       {"center", {{"x", o.center_m.x()}, {"y", o.center_m.y()}}},
+                       {"yaw", o.yaw_rad},
+                       {"length", o.length_m},
+                       {"width", o.width_m},
+                       {"speed_longitudinal", o.speed_longitudinal_mps},
+                       {"speed_lateral", o.speed_lateral_mps},
+                       {"center_covariance", {c(0, 0), c(0, 1), c(1, 0), c(1, 1)}},
+                       {"yaw_variance", o.yaw_variance},
+                       {"speed_variance", o.speed_variance},
+                       {"history", o.history}});
+  }
+  return {{"timestamp", TimeToJson(frame.stamp)},
+          {"frame_id", frame_id},
+          {"mount", Mount(frame.mount)},
+          {"objects", std::move(objects)}};
+}
+
+StereoFrame StereoFrameFromJson(const json& j, const std::string& source) {
+  StereoFrame frame;
+  frame.stamp = TimeFromJson(Field(j, "timestamp", source), source);
+  frame.mount = MountFromJson(j, source);
+  const json& objects = Field(j, "objects", source);
+  if (!objects.is_array()) throw InputError(source, 0, "objects", "expected an array");
+  for (const json& o : objects) {
+    StereoObject s;
+    const json& id = Field(o, "id", source);
+    if (!id.is_number_unsigned()) throw InputError(source, 0, "id", "expected an unsigned integer");
+    s.id = id.get<std::uint32_t>();
+    const json& cls = Field(o, "class", source);
+    const auto parsed = cls.is_string() ? ParseObjectClass(cls.get<std::string>()) : std::nullopt;
+    if (!parsed) throw InputError(source, 0, "class", "unknown object class");
+    s.object_class = *parsed;
+    const json& center = Field(o, "center", source);
+    s.center_m = {NumberField(center, "x", source), NumberField(center, "y", source)};
+    s.yaw_rad = NumberField(o, "yaw", source);
+    s.length_m = NumberField(o, "length", source);
+    s.width_m = NumberField(o, "width", source);
+    s.speed_longitudinal_mps = NumberField(o, "speed_longitudinal", source);
+    s.speed_lateral_mps = NumberField(o, "speed_lateral", source);
+    const json& cov = Field(o, "center_covariance", source);
+    if (!cov.is_array() || cov.size() != 4) {
+      throw InputError(source, 0, "center_covariance", "expected 4 numbers");
+    }
+    for (int k = 0; k < 4; ++k) {
+      const json& v = cov[static_cast<std::size_t>(k)];
+      if (!v.is_number()) throw InputError(source, 0, "center_covariance", "expected numbers");
+      s.center_covariance(k / 2, k % 2) = v.get<double>();
+    }
+    s.yaw_variance = NumberField(o, "yaw_variance", source);
+    s.speed_variance = NumberField(o, "speed_variance", source);
+    const json& history = Field(o, "history", source);
+    if (!history.is_number_unsigned()) {
+      throw InputError(source, 0, "history", "expected an unsigned integer");
+    }
+    s.history = history.get<std::uint32_t>();
+    frame.objects.push_back(s);
+  }
+  return frame;
+}
+
+json EgoOdometryToJson(const EgoOdometry& odometry) {
+  return {{"timestamp", TimeToJson(odometry.stamp)},
+          {"speed", odometry.speed_mps},
+          {"yaw_rate", odometry.yaw_rate_radps}};
+}
+
+EgoOdometry EgoOdometryFromJson(const json& j, const std::string& source) {
+  EgoOdometry o;
+  o.stamp = TimeFromJson(Field(j, "timestamp", source), source);
+  o.speed_mps = NumberField(j, "speed", source);
+  o.yaw_rate_radps = NumberField(j, "yaw_rate", source);
+  return o;
+}
+
+json TruthFrameToJson(const sim::TruthFrame& frame) {
+  json actors = json::array();
+  for (const sim::ActorTruth& a : frame.actors) {
+    actors.push_back({{"id", a.id},
+                      {"class", std::string(ToString(a.object_class))},
+                      {"state", StateToJson(a.state)},
+                      {"footprint", FootprintToJson(a.footprint)},
+                      {"visible_fraction_lidar", a.visible_fraction_lidar},
+                      {"visible_fraction_stereo", a.visible_fraction_stereo},
+                      {"contact_time", a.contact_time_s ? json(*a.contact_time_s) : json(nullptr)}});
+  }
+  return {{"timestamp", TimeToJson(frame.stamp)},
+          {"ego",
+           {{"state", StateToJson(frame.ego.state)},
+            {"footprint", FootprintToJson(frame.ego.footprint)}}},
+          {"actors", std::move(actors)}};
+}
+
+json FrameTransformToJson(TimeNs t, const std::string& parent, const std::string& child,
+                          const Pose2& pose) {
+  return {{"timestamp", TimeToJson(t)},
+          {"parent_frame_id", parent},
+          {"child_frame_id", child},
+          {"translation", {{"x", pose.x()}, {"y", pose.y()}, {"z", 0.0}}},
+          {"rotation", QuaternionFromYaw(pose.yaw)}};
+}
+
+json PoseInFrameToJson(TimeNs t, const std::string& frame_id, const Pose2& pose) {
+  return {{"timestamp", TimeToJson(t)}, {"frame_id", frame_id}, {"pose", Pose3FromPose2(pose)}};
+}
+
+namespace {
+
+// A closed outline of a polygon at height z as a foxglove line loop (type 1).
+json Outline(const std::vector<Eigen::Vector2d>& ring, const json& color, double z) {
+  json points = json::array();
+  for (const Eigen::Vector2d& v : ring) points.push_back({{"x", v.x()}, {"y", v.y()}, {"z", z}});
+  return {{"type", 1},
+          {"pose", Pose3FromPose2(Pose2())},
+          {"thickness", 0.1},
+          {"scale_invariant", false},
+          {"points", std::move(points)},
+          {"color", color},
+          {"colors", json::array()},
+          {"indices", json::array()}};
+}
+
+json Cylinder(const Eigen::Vector2d& c, double radius, double height, const json& color) {
+  return {{"pose", Pose3FromPose2(Pose2(c, 0.0))},
+          {"size", {{"x", 2.0 * radius}, {"y", 2.0 * radius}, {"z", height}}},
+          {"bottom_scale", 1.0},
+          {"top_scale", 1.0},
+          {"color", color}};
+}
+
+json Entity(TimeNs t, const std::string& id, const std::string& frame_id) {
+  return {{"timestamp", TimeToJson(t)},
+          {"frame_id", frame_id},
+          {"id", id},
+          {"lifetime", {{"sec", 0}, {"nsec", 0}}},
+          {"frame_locked", false},
+          {"metadata", json::array()},
+          {"arrows", json::array()},
+          {"cubes", json::array()},
+          {"spheres", json::array()},
+          {"cylinders", json::array()},
+          {"lines", json::array()},
+          {"triangles", json::array()},
+          {"texts", json::array()},
+          {"models", json::array()}};
+}
+
+json ColorForClass(ObjectClass c) {
+  switch (c) {
+    case ObjectClass::kPedestrian: return Color(1.0, 0.55, 0.1, 0.9);
+    case ObjectClass::kCyclist: return Color(0.9, 0.2, 0.8, 0.9);
+    case ObjectClass::kTruck: return Color(0.2, 0.4, 1.0, 0.9);
+    default: return Color(0.2, 0.8, 1.0, 0.9);
+  }
+}
+
+}  // namespace
+
+json TruthSceneToJson(const sim::TruthFrame& frame) {
+  json entities = json::array();
+  for (const sim::ActorTruth& a : frame.actors) {
+    json e = Entity(frame.stamp, a.id, "world");
+    const json color = ColorForClass(a.object_class);
+    if (a.footprint.kind == sim::Shape::Kind::kCircle) {
+      e["cylinders"].push_back(Cylinder(a.footprint.center, a.footprint.radius, 1.7, color));
+    } else {
+      e["lines"].push_back(Outline(a.footprint.vertices, color, 0.0));
+    }
+    e["texts"].push_back({{"pose", Pose3FromPose2(a.state.pose)},
+                          {"billboard", true},
+                          {"font_size", 14.0},
+                          {"scale_invariant", true},
+                          {"color", Color(1, 1, 1, 1)},
+                          {"text", a.id}});
+    // A short lifetime, so actors that leave the scenario vanish from the display.
+    e["lifetime"] = {{"sec", 0}, {"nsec", 200'000'000}};
+    entities.push_back(std::move(e));
+  }
+  json ego = Entity(frame.stamp, "ego", "world");
+  ego["lines"].push_back(Outline(frame.ego.footprint.vertices, Color(0.3, 1.0, 0.3, 1.0), 0.0));
+  ego["lifetime"] = {{"sec", 0}, {"nsec", 200'000'000}};
+  entities.push_back(std::move(ego));
+  return {{"deletions", json::array()}, {"entities", std::move(entities)}};
+}
+
+json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes) {
+  json entities = json::array();
+  const json wall = Color(0.6, 0.6, 0.6, 1.0);
+  const json post = Color(0.9, 0.9, 0.3, 1.0);
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const sim::Shape& s = shapes[i];
+    json e = Entity(t, "static-" + std::to_string(i), "world");
+    if (s.kind == sim::Shape::Kind::kCircle) {
+      e["cylinders"].push_back(Cylinder(s.center, s.radius, 2.5, post));
+    } else {
+      e["lines"].push_back(Outline(s.vertices, wall, 0.0));
+    }
+    entities.push_back(std::move(e));
+  }
+  return {{"deletions", json::array()}, {"entities", std::move(entities)}};
+}
+
+}  // namespace lookout::io

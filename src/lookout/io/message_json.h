@@ -1,0 +1,43 @@
+#pragma once
+
+// Messages to and from the JSON of the recording (schemas in json_schemas.h). The encoding is
+// deterministic: the same message always gives the same bytes (nlohmann::json prints doubles
+// in their shortest round-trip form and objects with sorted keys).
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lookout/core/messages.h"
+#include "lookout/sim/shapes.h"
+#include "lookout/sim/truth.h"
+
+namespace lookout::io {
+
+nlohmann::json TimeToJson(TimeNs t);
+// Throws lookout::InputError(source, 0, field, ...) on a malformed value.
+TimeNs TimeFromJson(const nlohmann::json& j, const std::string& source);
+
+nlohmann::json LidarScanToJson(const LidarScan& scan, const std::string& frame_id);
+LidarScan LidarScanFromJson(const nlohmann::json& j, const std::string& source);
+
+nlohmann::json StereoFrameToJson(const StereoFrame& frame, const std::string& frame_id);
+StereoFrame StereoFrameFromJson(const nlohmann::json& j, const std::string& source);
+
+nlohmann::json EgoOdometryToJson(const EgoOdometry& odometry);
+EgoOdometry EgoOdometryFromJson(const nlohmann::json& j, const std::string& source);
+
+nlohmann::json TruthFrameToJson(const sim::TruthFrame& frame);
+
+// foxglove.FrameTransform of `child` in `parent`.
+nlohmann::json FrameTransformToJson(TimeNs t, const std::string& parent, const std::string& child,
+                                    const Pose2& pose);
+// foxglove.PoseInFrame.
+nlohmann::json PoseInFrameToJson(TimeNs t, const std::string& frame_id, const Pose2& pose);
+// foxglove.SceneUpdate drawing the truth: actors as boxes or cylinders with their ids.
+nlohmann::json TruthSceneToJson(const sim::TruthFrame& frame);
+// foxglove.SceneUpdate drawing the static world: polygons as extruded outlines, circles as
+// cylinders. Sent once; the entities have no lifetime.
+nlohmann::json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes);
+
+}  // namespace lookout::io
