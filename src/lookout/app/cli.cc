@@ -1,14 +1,229 @@
 #include "lookout/app/cli.h"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "lookout/app/output_files.h"
+#include "lookout/app/runner.h"
+#include "lookout/core/input_error.h"
+#include "lookout/eval/statistics.h"
+#include "lookout/io/scenario_loader.h"
+#include "lookout/sim/simulator.h"
 
 namespace lookout::app {
+namespace {
+
+using nlohmann::json;
+
+int DefaultThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
+
+// Counts print as integers (151, not 151.0); JSON has no NaN or infinity, so those are null.
+json NumberOrNull(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  if (v == std::trunc(v) && std::fabs(v) < 9.0e15) return static_cast<std::int64_t>(v);
+  return v;
+}
+
+json MetricsJson(const eval::ScenarioMetrics& m) {
+  json values = json::object();
+  for (const auto& [key, value] : m.values) values[key] = NumberOrNull(value);
+  return {{"scenario", m.scenario}, {"metrics", std::move(values)}};
+}
+
+// The live progress line, on a terminal only: in a log it would be noise.
+std::function<void(double, double)> ProgressLine(const std::string& name) {
+  if (!isatty(STDERR_FILENO)) return nullptr;
+  return [name](double t, double duration) {
+    std::cerr << fmt::format("\r{}  t = {:6.2f} / {:.2f} s  {:3.0f} %", name, t, duration,
+                             100.0 * t / duration)
+              << std::flush;
+  };
+}
+
+void ValidateThreads(int threads) {
+  if (threads < 1) throw InputError("--threads", 0, "threads", "must be at least 1");
+}
+
+void PrintSummary(const RunResult& r, const std::string& source, const std::string& recording) {
+  std::cout << fmt::format("scenario    {} ({})\n", r.scenario, source);
+  std::cout << fmt::format("simulated   {:.2f} s\n", r.simulated_s);
+  std::cout << fmt::format("frames      {} lidar, {} stereo, {} odometry\n", r.lidar_frames,
+                           r.stereo_frames, r.odometry_frames);
+  std::cout << "messages   ";
+  for (const auto& [topic, count] : r.messages_per_topic) {
+    std::cout << fmt::format(" {} {}", topic, count);
+  }
+  std::cout << "\n";
+  std::cout << "contacts   ";
+  if (r.contacts.empty()) std::cout << " none";
+  for (const auto& [id, t] : r.contacts) std::cout << fmt::format(" {} at {:.2f} s", id, t);
+  std::cout << "  (ground truth)\n";
+  std::cout << fmt::format("wall time   {:.3f} s (sensor simulation {:.3f} s)\n", r.wall_s,
+                           r.simulation_wall_s);
+  std::cout << fmt::format("real time   {:.1f}x faster than real time\n",
+                           r.simulated_s / r.wall_s);
+  std::cout << fmt::format("recording   {}\n", recording);
+}
+
+int Run(const std::string& scenario_path, std::string out_dir, int threads) {
+  ValidateThreads(threads);
+  const sim::Scenario scenario =
+      scenario_path.empty() ? io::LoadDefaultScenario() : io::LoadScenarioFile(scenario_path);
+  if (out_dir.empty()) out_dir = (std::filesystem::path("lookout-out") / scenario.name).string();
+  EnsureOutputDirectory(out_dir, "--out");
+  const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
+  const std::string metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
+
+  Pipeline pipeline;
+  RunOptions options;
+  options.threads = threads;
+  options.recording_path = recording;
+  options.progress = ProgressLine(scenario.name);
+  const RunResult result = RunScenario(scenario, pipeline, options);
+  if (options.progress) std::cerr << "\n";
+  WriteFileAtomically(metrics_path, MetricsJson(result.metrics).dump(2) + "\n");
+  PrintSummary(result, scenario.source, recording);
+  return 0;
+}
+
+int Eval(const std::vector<std::string>& paths, const std::string& json_path, int threads) {
+  ValidateThreads(threads);
+  // Every file is checked before anything runs: a bad one refuses the whole command.
+  std::vector<sim::Scenario> scenarios;
+  scenarios.reserve(paths.size());
+  for (const std::string& p : paths) scenarios.push_back(io::LoadScenarioFile(p));
+
+  std::vector<eval::ScenarioMetrics> results;
+  json list = json::array();
+  for (const sim::Scenario& s : scenarios) {
+    Pipeline pipeline;
+    RunOptions options;
+    options.threads = threads;
+    const RunResult r = RunScenario(s, pipeline, options);
+    list.push_back(MetricsJson(r.metrics));
+    results.push_back(r.metrics);
+  }
+
+  json summary = json::object();
+  for (const auto& [key, k] : eval::Summarise(results)) {
+    summary[key] = {{"count", k.count},
+                    {"mean", NumberOrNull(k.mean)},
+                    {"min", NumberOrNull(k.min)},
+                    {"max", NumberOrNull(k.max)}};
+  }
+  const json document = {{"scenarios", std::move(list)}, {"summary", std::move(summary)}};
+
+  // The human-readable table, on stderr so stdout can carry the JSON.
+  for (const eval::ScenarioMetrics& m : results) {
+    std::cerr << fmt::format("{:<28}", m.scenario);
+    for (const auto& [key, value] : m.values) std::cerr << fmt::format("  {} {:.4g}", key, value);
+    std::cerr << "\n";
+  }
+  if (json_path.empty()) {
+    std::cout << document.dump(2) << "\n";
+  } else {
+    WriteFileAtomically(json_path, document.dump(2) + "\n");
+  }
+  return 0;
+}
+
+// sim.realtime_factor: the default scenario's sensors, one thread, median of five runs.
+double SimRealtimeFactor() {
+  const sim::Simulator simulator(io::LoadDefaultScenario());
+  std::vector<double> factors;
+  for (int i = 0; i < 5; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    const sim::SensorLog log = simulator.Run(1);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    factors.push_back(simulator.scenario().duration_s / wall);
+  }
+  return eval::Median(factors);
+}
+
+// pipeline.realtime_factor: the whole run of the default scenario (simulation and every stage
+// that has landed, no recording), median of three runs.
+double PipelineRealtimeFactor() {
+  const sim::Scenario scenario = io::LoadDefaultScenario();
+  std::vector<double> factors;
+  for (int i = 0; i < 3; ++i) {
+    Pipeline pipeline;
+    RunOptions options;
+    options.threads = DefaultThreads();
+    factors.push_back(RunScenario(scenario, pipeline, options).metrics.values.at(
+        "timing.realtime_factor"));
+  }
+  return eval::Median(factors);
+}
+
+int Bench(const std::string& json_path) {
+  const json figures = {{"sim.realtime_factor", SimRealtimeFactor()},
+                        {"pipeline.realtime_factor", PipelineRealtimeFactor()}};
+  for (const auto& [key, value] : figures.items()) {
+    std::cerr << fmt::format("{:<28} {}\n", key, value.dump());
+  }
+  if (json_path.empty()) {
+    std::cout << figures.dump(2) << "\n";
+  } else {
+    WriteFileAtomically(json_path, figures.dump(2) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace
 
 int RunCli(int argc, char** argv) {
   CLI::App cli{"Lookout: perception and collision warning at intersections"};
   cli.require_subcommand(1);
-  CLI11_PARSE(cli, argc, argv);
-  return 0;
+
+  std::string run_scenario, run_out;
+  int threads = DefaultThreads();
+  CLI::App* run = cli.add_subcommand(
+      "run", "Simulate a scenario (the built-in default when none is given) and run the pipeline");
+  run->add_option("scenario", run_scenario, "Scenario YAML file");
+  run->add_option("--out", run_out, "Output directory (default lookout-out/NAME)");
+  run->add_option("--threads", threads, "Worker threads (the output does not depend on it)");
+
+  std::vector<std::string> eval_scenarios;
+  std::string eval_json;
+  CLI::App* eval_cmd = cli.add_subcommand("eval", "Run and score scenarios; JSON report");
+  eval_cmd->add_option("scenarios", eval_scenarios, "Scenario YAML files")->required();
+  eval_cmd->add_option("--json", eval_json, "Write the JSON report here instead of stdout");
+  eval_cmd->add_option("--threads", threads, "Worker threads (the output does not depend on it)");
+
+  std::string bench_json;
+  CLI::App* bench = cli.add_subcommand("bench", "Headline performance figures (JSON)");
+  bench->add_option("--json", bench_json, "Write the JSON here instead of stdout");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Help and version are successes; any other parse error is a bad option: exit 2.
+    const int code = cli.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (run->parsed()) return Run(run_scenario, run_out, threads);
+    if (eval_cmd->parsed()) return Eval(eval_scenarios, eval_json, threads);
+    if (bench->parsed()) return Bench(bench_json);
+  } catch (const InputError& e) {
+    std::cerr << "lookout: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lookout: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
 }
 
 }  // namespace lookout::app

@@ -32,6 +32,8 @@ class Simulator {
   const std::vector<Shape>& static_world() const { return static_world_; }
   const Trajectory& ego_trajectory() const { return ego_; }
   const std::vector<Trajectory>& actor_trajectories() const { return actors_; }
+  // Per actor (Scenario::actors order): when its footprint first touches the ego's, if ever.
+  const std::vector<std::optional<double>>& contact_times_s() const { return contact_time_s_; }
 
   // Ground truth at time t, visible fractions included. Pure and thread-safe.
   TruthFrame Truth(TimeNs t) const;

@@ -1,0 +1,17 @@
+#include "lookout/app/pipeline.h"
+
+namespace lookout::app {
+
+void Pipeline::OnOdometry(const EgoOdometry& odometry) {
+  for (const auto& stage : stages_) stage->OnOdometry(odometry);
+}
+
+void Pipeline::OnStereo(const StereoFrame& frame) {
+  for (const auto& stage : stages_) stage->OnStereo(frame);
+}
+
+void Pipeline::OnLidar(const LidarScan& scan) {
+  for (const auto& stage : stages_) stage->OnLidar(scan);
+}
+
+}  // namespace lookout::app

@@ -1,0 +1,48 @@
+#pragma once
+
+// Runs one scenario: simulates the sensors, delivers every message to the pipeline in
+// timestamp order, records everything, and measures the run.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lookout/app/pipeline.h"
+#include "lookout/eval/metrics.h"
+#include "lookout/sim/scenario.h"
+
+namespace lookout::app {
+
+struct RunOptions {
+  int threads = 1;                             // for the simulator; output does not depend on it
+  std::optional<std::string> recording_path;   // none: record nothing
+  // Called after each lidar cycle with the simulated time and the scenario's duration.
+  std::function<void(double t_s, double duration_s)> progress;
+};
+
+struct RunResult {
+  std::string scenario;
+  double simulated_s = 0.0;
+  std::int64_t lidar_frames = 0;
+  std::int64_t stereo_frames = 0;
+  std::int64_t odometry_frames = 0;
+  std::map<std::string, std::uint64_t> messages_per_topic;  // as recorded
+  double wall_s = 0.0;             // the whole run
+  double simulation_wall_s = 0.0;  // of which simulating the sensors
+  eval::ScenarioMetrics metrics;   // the keys of docs/cli-contract.md that have run
+  // Ground truth: actors whose footprint touches the ego's, and when (scenario time, s).
+  std::vector<std::pair<std::string, double>> contacts;
+};
+
+// The order in which messages with equal timestamps reach the pipeline: odometry first (the
+// newest ego motion before anything uses it), then stereo, then the lidar scan that closes
+// the cycle.
+enum class SensorOrder { kOdometry = 0, kStereo = 1, kLidar = 2 };
+
+RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options);
+
+}  // namespace lookout::app

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# End-to-end tests of the `lookout` program. Usage: cli_test.sh LOOKOUT SOURCE_DIR CASE
+set -euo pipefail
+lookout=$1
+src=$2
+case_name=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+case "$case_name" in
+  run_default)
+    "$lookout" run --out "$work/out" >"$work/stdout"
+    [[ -s "$work/out/recording.mcap" ]] || fail "no recording"
+    [[ -s "$work/out/metrics.json" ]] || fail "no metrics.json"
+    grep -q '"scenario": "left-turn-across-path"' "$work/out/metrics.json" || fail "metrics.json scenario"
+    grep -q '"timing.frames": 151' "$work/out/metrics.json" || fail "timing.frames should be 151"
+    for word in scenario simulated frames messages "wall time" "real time" recording; do
+      grep -q "^$word" "$work/stdout" || fail "summary lacks '$word'"
+    done
+    ls "$work/out" | grep -q '\.part$' && fail "a .part file was left behind"
+    ;;
+  deterministic)
+    "$lookout" run --out "$work/a" --threads 1 >/dev/null
+    "$lookout" run --out "$work/b" --threads 2 >/dev/null
+    "$lookout" run --out "$work/c" --threads 2 >/dev/null
+    cmp "$work/a/recording.mcap" "$work/b/recording.mcap" || fail "1 vs 2 threads differ"
+    cmp "$work/b/recording.mcap" "$work/c/recording.mcap" || fail "two 2-thread runs differ"
+    ;;
+  bad_scenario)
+    printf 'format: 1\nname: broken\nduration: -3\nego:\n  path: [[0, 0], [10, 0]]\n  speed: 1\n' \
+      >"$work/broken.yaml"
+    set +e
+    "$lookout" run "$work/broken.yaml" --out "$work/out" 2>"$work/stderr"
+    code=$?
+    set -e
+    [[ $code == 2 ]] || fail "exit code $code, expected 2"
+    grep -q "broken.yaml:3: duration" "$work/stderr" || fail "message lacks file:line: field: $(cat "$work/stderr")"
+    [[ $(wc -l <"$work/stderr") == 1 ]] || fail "more than one line on stderr"
+    [[ ! -e "$work/out" ]] || fail "output written for a bad scenario"
+    ;;
+  bad_option)
+    set +e
+    "$lookout" run --threads 0 --out "$work/out" 2>"$work/stderr"; code1=$?
+    "$lookout" run --no-such-flag 2>/dev/null; code2=$?
+    "$lookout" run "$work/missing.yaml" 2>"$work/stderr3"; code3=$?
+    set -e
+    [[ $code1 == 2 && $code2 == 2 && $code3 == 2 ]] || fail "exit codes $code1 $code2 $code3"
+    grep -q "missing.yaml" "$work/stderr3" || fail "missing file not named"
+    [[ ! -e "$work/out" ]] || fail "output written for a bad option"
+    ;;
+  reference_reader)
+    # The default run, read back by the reference TypeScript MCAP reader (@mcap/core).
+    "$lookout" run --out "$work/out" >/dev/null
+    node "$src/tests/node/read_mcap.mjs" "$work/out/recording.mcap" >"$work/read.json"
+    node -e '
+      const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
+      // 12 s: lidar 12.5 Hz -> 151 frames, stereo 20 Hz -> 241, odometry 50 Hz -> 601.
+      const want = {"/lidar/scan": 151, "/stereo/objects": 241, "/odometry": 601,
+                    "/truth/actors": 151, "/truth/scene": 151, "/truth/ego": 151,
+                    "/tf": 153, "/world/static": 1};
+      for (const [topic, n] of Object.entries(want)) {
+        if (r.topics[topic] !== n) { console.error(`${topic}: ${r.topics[topic]} != ${n}`); process.exit(1); }
+      }
+      if (Object.keys(r.topics).length !== Object.keys(want).length) { console.error("extra topics"); process.exit(1); }
+    ' "$work/read.json" || fail "reference reader counts: $(cat "$work/read.json")"
+    ;;
+  catalogue)
+    shopt -s nullglob
+    files=("$src"/scenarios/*.yaml)
+    (( ${#files[@]} >= 12 )) || fail "catalogue has ${#files[@]} files, expected >= 12"
+    for f in "${files[@]}"; do
+      name=$(basename "$f" .yaml)
+      "$lookout" run "$f" --out "$work/$name" >/dev/null || fail "run $f"
+      [[ -s "$work/$name/recording.mcap" ]] || fail "no recording for $f"
+    done
+    "$lookout" eval "${files[@]}" --json "$work/eval.json" 2>/dev/null
+    node -e '
+      const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
+      if (r.scenarios.length !== Number(process.argv[2])) process.exit(1);
+      for (const s of r.scenarios)
+        for (const k of ["timing.frames", "timing.pipeline_ms_median", "timing.realtime_factor"])
+          if (typeof s.metrics[k] !== "number") { console.error(s.scenario, k); process.exit(1); }
+    ' "$work/eval.json" "${#files[@]}" || fail "eval JSON"
+    ;;
+  *)
+    fail "unknown case $case_name"
+    ;;
+esac
+echo "ok: $case_name"
