@@ -1,0 +1,45 @@
+#pragma once
+
+// Options of the grid module, one plain struct with defaults and units in the names. The
+// filter stages (docs/extended-grid.md steps 2-8) add their fields here as they are built.
+
+#include <string>
+
+namespace lookout::grid {
+
+// The inverse sensor model's probabilities, docs/extended-grid.md step 1. The paper uses 1 and
+// 0; exact 0 and 1 make every later Bayes step degenerate (a cell once "certain" can never be
+// revised), hence values strictly inside (0, 1).
+struct InverseSensorModelOptions {
+  double p_hit = 0.7;   // P(occupied | the cell holds a beam's impact)
+  double p_free = 0.3;  // P(occupied | a beam crossed the cell before its impact)
+  // A beam with no return (+inf, or a range at or beyond max range) says the space along it is
+  // free, but it is weaker evidence than a return: it is also what a dropout (0.5 % of the
+  // simulated beams), a dark or specular surface, or rain gives. So it marks cells free only up
+  // to no_return_free_range_m, with p_free_no_return, between p_free and 0.5. Set the range to
+  // 0 to ignore no-return beams altogether.
+  double p_free_no_return = 0.4;
+  double no_return_free_range_m = 30.0;
+
+  // Throws lookout::InputError naming the first field out of range; `prefix` is the field path
+  // of this struct ("grid.inverse_sensor_model").
+  void Validate(const std::string& source, const std::string& prefix) const;
+};
+
+struct GridOptions {
+  // 400 x 400 cells of 0.15 m: a 60 m x 60 m window around the ego (the benchmark size).
+  double cell_size_m = 0.15;
+  int width_cells = 400;   // along the odometry frame's x
+  int height_cells = 400;  // along the odometry frame's y
+  InverseSensorModelOptions inverse_sensor_model;
+
+  // Throws lookout::InputError(source, 0, "grid.<field>", problem) for the first field out of
+  // range. `source` names where the options came from (a file, a flag).
+  void Validate(const std::string& source = "grid options") const;
+};
+
+// Upper bound on width_cells and height_cells: keeps every storage index within int range
+// (16384^2 = 2^28 cells, 1 GiB per float layer, 2.4 km at 0.15 m).
+inline constexpr int kMaxGridSideCells = 16384;
+
+}  // namespace lookout::grid

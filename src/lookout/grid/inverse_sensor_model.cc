@@ -1,0 +1,98 @@
+#include "lookout/grid/inverse_sensor_model.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "lookout/grid/ray_traversal.h"
+
+namespace lookout::grid {
+
+void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
+                               const ScrollingGridGeometry& geometry,
+                               const InverseSensorModelOptions& options, MeasurementGrid& out) {
+  assert(options.p_hit > 0.5 && options.p_hit < 1.0 && options.p_free > 0.0 &&
+         options.p_free <= options.p_free_no_return && options.p_free_no_return < 0.5 &&
+         "InverseSensorModelOptions::Validate() first");
+  // Reset only what the previous call wrote: every non-0.5 cell is in `touched`.
+  if (out.p_occupied.size() != geometry.CellCount()) {
+    out.p_occupied.assign(geometry.CellCount(), kUnknownProbability);
+  } else {
+    for (const std::size_t i : out.touched) out.p_occupied[i] = kUnknownProbability;
+  }
+  out.touched.clear();
+  out.geometry = geometry;
+  out.stamp = scan.stamp;
+  out.stats = InverseSensorModelStats{};
+  out.stats.beams = static_cast<int>(scan.ranges_m.size());
+  // A pose that is not a pose (a localisation bug) places no beam: everything stays unknown.
+  if (!sensor_pose.translation.allFinite() || !std::isfinite(sensor_pose.yaw)) return;
+
+  const double max_range_m = std::isfinite(scan.max_range_m) && scan.max_range_m > 0.0
+                                 ? scan.max_range_m
+                                 : std::numeric_limits<double>::infinity();
+  const double no_return_length_m = std::min(options.no_return_free_range_m, max_range_m);
+  const auto p_hit = static_cast<float>(options.p_hit);
+  const auto p_free = static_cast<float>(options.p_free);
+  const auto p_free_no_return = static_cast<float>(options.p_free_no_return);
+
+  std::vector<float>& p = out.p_occupied;
+  std::vector<std::size_t>& touched = out.touched;
+  std::size_t visits = 0;
+  const Eigen::Vector2d origin_m = sensor_pose.translation;
+
+  for (std::size_t beam = 0; beam < scan.ranges_m.size(); ++beam) {
+    const auto range_m = static_cast<double>(scan.ranges_m[beam]);
+    if (std::isnan(range_m)) {
+      ++out.stats.nan_beams;
+      continue;
+    }
+    if (range_m <= 0.0) {
+      ++out.stats.non_positive_beams;
+      continue;
+    }
+    const bool hit = range_m < max_range_m;  // +inf and r >= max: no return
+    if (hit) {
+      ++out.stats.hit_beams;
+    } else if (std::isinf(range_m)) {
+      ++out.stats.no_return_beams;
+    } else {
+      ++out.stats.beyond_max_beams;
+    }
+    const double length_m = hit ? range_m : no_return_length_m;
+    if (!(length_m > 0.0)) continue;
+    const float p_crossed = hit ? p_free : p_free_no_return;
+
+    const double angle_rad = sensor_pose.yaw + scan.BeamAngle(beam);
+    const Eigen::Vector2d end_m =
+        origin_m + length_m * Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad));
+    TraverseSegment(geometry, origin_m, end_m, [&](std::size_t i, bool is_end) {
+      ++visits;
+      float& value = p[i];
+      if (value == kUnknownProbability) touched.push_back(i);
+      if (hit && is_end) {
+        value = p_hit;  // a hit wins over anything (see the header)
+      } else if (value <= kUnknownProbability) {
+        value = std::min(value, p_crossed);  // the stronger free evidence; never over a hit
+      }
+    });
+  }
+  out.stats.cell_visits = visits;
+}
+
+std::optional<Pose2> SensorPoseAt(const EgoPoseSource& ego, const LidarScan& scan) {
+  const std::optional<EgoState> state = ego.PoseAt(scan.stamp);
+  if (!state) return std::nullopt;
+  return state->pose * scan.mount;
+}
+
+MeasurementGrid ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
+                                          const ScrollingGridGeometry& geometry,
+                                          const InverseSensorModelOptions& options) {
+  MeasurementGrid out{geometry, scan.stamp, {}, {}, {}};
+  ComputeInverseSensorModel(scan, sensor_pose, geometry, options, out);
+  return out;
+}
+
+}  // namespace lookout::grid
