@@ -12,13 +12,13 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
-#include <limits>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -128,20 +128,13 @@ bool IsPlainOrTagged(const YAML::Node& node, std::string_view tag) {
   return node.IsScalar() && (node.Tag() == kPlainTag || node.Tag() == tag);
 }
 
-// YAML's spellings of infinity and not-a-number (core schema); std::from_chars would take C's
-// spellings ("inf", "nan") instead, which YAML reads as strings.
-std::optional<double> YamlSpecialFloat(std::string_view text) {
+// YAML's spellings of infinity and not-a-number (core schema): refused by name, since
+// std::from_chars would not read them (it takes C's "inf" and "nan", which YAML calls strings).
+bool IsYamlInfinityOrNan(std::string_view text) {
   std::string_view body = text;
-  const bool negative = !body.empty() && body.front() == '-';
   if (!body.empty() && (body.front() == '-' || body.front() == '+')) body.remove_prefix(1);
-  if (body == ".inf" || body == ".Inf" || body == ".INF") {
-    return negative ? -std::numeric_limits<double>::infinity()
-                    : std::numeric_limits<double>::infinity();
-  }
-  if (text == ".nan" || text == ".NaN" || text == ".NAN") {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return std::nullopt;
+  return body == ".inf" || body == ".Inf" || body == ".INF" || text == ".nan" || text == ".NaN" ||
+         text == ".NAN";
 }
 
 // Any finite number, written plainly (a quoted "12" is a string, as in YAML).
@@ -150,9 +143,7 @@ double Number(const Field& f) {
     FailType(f, "a number");
   }
   const std::string& text = f.node.Scalar();
-  if (const std::optional<double> special = YamlSpecialFloat(text)) {
-    Fail(f, fmt::format("must be a finite number, got {}", text));
-  }
+  if (IsYamlInfinityOrNan(text)) Fail(f, fmt::format("must be a finite number, got {}", text));
   // from_chars takes no '+' but does take "inf" and "nan": after an optional sign, a YAML
   // number starts with a digit or a point.
   std::string_view body = text;
@@ -237,16 +228,17 @@ class Mapping {
  public:
   explicit Mapping(const Field& f) : field_(f) {
     if (!f.node.IsMap()) FailType(f, "a mapping");
+    std::unordered_map<std::string, int> key_lines;
     for (YAML::const_iterator it = f.node.begin(); it != f.node.end(); ++it) {
       const Field key(it->first, f.path, f.line, f.source);
       if (!it->first.IsScalar())
         Fail(key, fmt::format("a key must be a name, got {}", Describe(it->first)));
       const std::string& name = it->first.Scalar();
-      for (const Entry& e : entries_) {
-        if (e.key == name) {
-          Fail(Field(it->first, KeyPath(f, name), f.line, f.source),
-               fmt::format("repeated key (first at line {})", e.key_line));
-        }
+      // A map, not a scan of the entries: a file may hold many keys (up to the size limit).
+      const auto [first, inserted] = key_lines.emplace(name, key.line);
+      if (!inserted) {
+        Fail(Field(it->first, KeyPath(f, name), f.line, f.source),
+             fmt::format("repeated key (first at line {})", first->second));
       }
       entries_.push_back({name, key.line, Field(it->second, KeyPath(f, name), key.line, f.source)});
     }
@@ -428,18 +420,16 @@ sim::ActorSpec ParseActor(const Mapping& m, double duration_s) {
 
 std::vector<sim::ActorSpec> ParseActors(const Field& f, double duration_s) {
   std::vector<sim::ActorSpec> actors;
-  std::vector<int> id_lines;  // per actor, for the duplicate message
+  std::unordered_map<std::string, int> id_lines;  // for the duplicate message
   for (const Field& e : List(f)) {
     const Mapping m(e);
     actors.push_back(ParseActor(m, duration_s));
     const Field id = m.Require("id");
-    for (std::size_t i = 0; i + 1 < actors.size(); ++i) {
-      if (actors[i].id == actors.back().id) {
-        Fail(id, fmt::format("duplicate actor id '{}' (first at line {})", actors.back().id,
-                             id_lines[i]));
-      }
+    const auto [first, inserted] = id_lines.emplace(actors.back().id, id.line);
+    if (!inserted) {
+      Fail(id, fmt::format("duplicate actor id '{}' (first at line {})", actors.back().id,
+                           first->second));
     }
-    id_lines.push_back(id.line);
   }
   return actors;
 }
