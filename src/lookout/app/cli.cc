@@ -74,7 +74,8 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
   std::cout << fmt::format("recording   {}\n", recording);
 }
 
-int Run(const std::string& scenario_path, std::string out_dir, int threads) {
+int Run(const std::string& scenario_path, std::string out_dir, int threads,
+        std::optional<double> snapshot_s) {
   ValidateThreads(threads);
   const sim::Scenario scenario =
       scenario_path.empty() ? io::LoadDefaultScenario() : io::LoadScenarioFile(scenario_path);
@@ -83,15 +84,23 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads) {
   const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
   const std::string metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
 
-  Pipeline pipeline;
+  if (snapshot_s && (!std::isfinite(*snapshot_s) || *snapshot_s < 0.0 ||
+                     *snapshot_s > scenario.duration_s)) {
+    throw InputError("--snapshot", 0, "snapshot",
+                     fmt::format("must be a time within the scenario, 0 to {} s", scenario.duration_s));
+  }
+  Pipeline pipeline(PipelineOptions{});
   RunOptions options;
   options.threads = threads;
   options.recording_path = recording;
+  options.snapshot_s = snapshot_s;
+  options.snapshot_dir = out_dir;
   options.progress = ProgressLine(scenario.name);
   const RunResult result = RunScenario(scenario, pipeline, options);
   if (options.progress) std::cerr << "\n";
   WriteFileAtomically(metrics_path, MetricsJson(result.metrics).dump(2) + "\n");
   PrintSummary(result, scenario.source, recording);
+  for (const std::string& png : result.snapshots) std::cout << fmt::format("snapshot    {}\n", png);
   return 0;
 }
 
@@ -105,7 +114,7 @@ int Eval(const std::vector<std::string>& paths, const std::string& json_path, in
   std::vector<eval::ScenarioMetrics> results;
   json list = json::array();
   for (const sim::Scenario& s : scenarios) {
-    Pipeline pipeline;
+    Pipeline pipeline(PipelineOptions{});
     RunOptions options;
     options.threads = threads;
     const RunResult r = RunScenario(s, pipeline, options);
@@ -156,7 +165,7 @@ double PipelineRealtimeFactor() {
   const sim::Scenario scenario = io::LoadDefaultScenario();
   std::vector<double> factors;
   for (int i = 0; i < 3; ++i) {
-    Pipeline pipeline;
+    Pipeline pipeline(PipelineOptions{});
     RunOptions options;
     options.threads = DefaultThreads();
     factors.push_back(RunScenario(scenario, pipeline, options).metrics.values.at(
@@ -192,6 +201,8 @@ int RunCli(int argc, char** argv) {
   run->add_option("scenario", run_scenario, "Scenario YAML file");
   run->add_option("--out", run_out, "Output directory (default lookout-out/NAME)");
   run->add_option("--threads", threads, "Worker threads (the output does not depend on it)");
+  std::optional<double> snapshot_s;
+  run->add_option("--snapshot", snapshot_s, "Write PNGs of the grid (occupancy, speed map) at T s");
 
   std::vector<std::string> eval_scenarios;
   std::string eval_json;
@@ -213,7 +224,7 @@ int RunCli(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return Run(run_scenario, run_out, threads);
+    if (run->parsed()) return Run(run_scenario, run_out, threads, snapshot_s);
     if (eval_cmd->parsed()) return Eval(eval_scenarios, eval_json, threads);
     if (bench->parsed()) return Bench(bench_json);
   } catch (const InputError& e) {

@@ -2,6 +2,14 @@
 
 namespace lookout::app {
 
+Pipeline::Pipeline(const PipelineOptions& options) {
+  if (options.grid) {
+    auto grid = std::make_unique<GridStage>();
+    grid_ = grid.get();
+    stages_.push_back(std::move(grid));
+  }
+}
+
 void Pipeline::OnOdometry(const EgoOdometry& odometry) {
   for (const auto& stage : stages_) stage->OnOdometry(odometry);
 }

@@ -3,30 +3,33 @@
 // The processing stages and how messages reach them. The runner (runner.h) owns the clock and
 // calls the pipeline with every sensor message in timestamp order; each stage sees each
 // message at its own sensor's rate. A lidar scan closes a cycle: the stages that run per scan
-// (grid, objects, fusion, tracking, risk, as they land) run then, and the runner times that
-// whole step.
+// (the grid now; objects, fusion, tracking and risk as they land) run then, and the runner
+// times that whole step.
 
 #include <memory>
 #include <vector>
 
+#include "lookout/app/grid_stage.h"
+#include "lookout/app/stage.h"
 #include "lookout/core/messages.h"
 
 namespace lookout::app {
 
-// One processing stage, as the pipeline sees it. Stages keep their own state; a stage never
-// reaches into another's.
-class Stage {
- public:
-  virtual ~Stage() = default;
-  virtual void OnOdometry(const EgoOdometry& /*odometry*/) {}
-  virtual void OnStereo(const StereoFrame& /*frame*/) {}
-  virtual void OnLidar(const LidarScan& /*scan*/) {}
+struct PipelineOptions {
+  bool grid = true;  // the extended grid (docs/extended-grid.md)
 };
 
 class Pipeline {
  public:
+  Pipeline() = default;
+  explicit Pipeline(const PipelineOptions& options);
+
+  // Any stage, run after the built-in ones (tests add probes this way).
   void Add(std::unique_ptr<Stage> stage) { stages_.push_back(std::move(stage)); }
   std::size_t size() const { return stages_.size(); }
+
+  // The grid stage, or nullptr when the pipeline runs without it.
+  const GridStage* grid() const { return grid_; }
 
   void OnOdometry(const EgoOdometry& odometry);
   void OnStereo(const StereoFrame& frame);
@@ -34,6 +37,7 @@ class Pipeline {
 
  private:
   std::vector<std::unique_ptr<Stage>> stages_;
+  const GridStage* grid_ = nullptr;  // owned by stages_
 };
 
 }  // namespace lookout::app

@@ -1,12 +1,19 @@
 #include "lookout/app/runner.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
 #include <utility>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
+#include "lookout/app/grid_scoring.h"
 #include "lookout/eval/statistics.h"
+#include "lookout/io/grid_images.h"
+#include "lookout/io/png_writer.h"
 #include "lookout/io/recorder.h"
 #include "lookout/sim/simulator.h"
 
@@ -19,9 +26,20 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-}  // namespace
+// The grid at one instant as PNG images: occupancy, and the speed map of the paper's Fig. 6
+// (hue = direction, brightness = speed).
+std::vector<std::string> WriteSnapshot(const grid::ExtendedGrid& grid, const std::string& dir,
+                                       TimeNs stamp) {
+  const eval::GridBelief b = BeliefOf(grid);
+  const std::string stem = fmt::format("{}/snapshot-{:.2f}s", dir, ToSeconds(stamp));
+  const std::vector<std::string> files = {stem + "-occupancy.png", stem + "-speed.png"};
+  io::WritePng(files[0], io::RenderOccupancy(b.geometry, b.occupancy));
+  io::WritePng(files[1], io::RenderSpeedMap(b.geometry, b.velocity_x_mps, b.velocity_y_mps,
+                                            b.occupancy, b.velocity_confidence));
+  return files;
+}
 
-RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options) {
+RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options) {
   const Clock::time_point run_start = Clock::now();
   RunResult result;
   result.scenario = scenario.name;
@@ -39,6 +57,16 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
   result.lidar_frames = static_cast<std::int64_t>(log.lidar.size());
   result.stereo_frames = static_cast<std::int64_t>(log.stereo.size());
   result.odometry_frames = static_cast<std::int64_t>(log.odometry.size());
+
+  // The odometry frame (where the grid lives) is the ego's true pose at the first reading.
+  std::optional<GridScorer> grid_scorer;
+  if (pipeline.grid()) {
+    grid_scorer.emplace(simulator.ego_trajectory().At(0.0).pose, simulator.static_world(),
+                        scenario.sensors.lidar.max_range_m);
+  }
+  double scoring_s = 0.0;  // not the pipeline's time: excluded from the real-time factor
+  bool snapshot_due = options.snapshot_s.has_value() && pipeline.grid() != nullptr;
+  const TimeNs snapshot_at = options.snapshot_s ? FromSeconds(*options.snapshot_s) : 0;
 
   std::optional<io::Recorder> recorder;
   if (options.recording_path) {
@@ -81,6 +109,15 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
       const Clock::time_point step_start = Clock::now();
       pipeline.OnLidar(scan);
       step_ms.push_back(1e3 * SecondsSince(step_start));
+      if (grid_scorer) {
+        const Clock::time_point scoring_start = Clock::now();
+        grid_scorer->Observe(*pipeline.grid(), log.truth[k]);
+        scoring_s += SecondsSince(scoring_start);
+      }
+      if (snapshot_due && scan.stamp >= snapshot_at) {
+        result.snapshots = WriteSnapshot(pipeline.grid()->grid(), options.snapshot_dir, scan.stamp);
+        snapshot_due = false;
+      }
       if (recorder) {
         recorder->Write(scan);
         recorder->Write(log.truth[k]);
@@ -93,11 +130,23 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
     result.messages_per_topic = recorder->message_counts();
     recorder->Finish();
   }
-  result.wall_s = SecondsSince(run_start);
+  result.wall_s = SecondsSince(run_start) - scoring_s;
   result.metrics.scenario = scenario.name;
   result.metrics.values["timing.frames"] = static_cast<double>(result.lidar_frames);
   result.metrics.values["timing.pipeline_ms_median"] = eval::Median(step_ms);
   result.metrics.values["timing.realtime_factor"] = scenario.duration_s / result.wall_s;
+  if (grid_scorer) grid_scorer->Report(result.metrics.values, *pipeline.grid());
+  return result;
+}
+
+}  // namespace
+
+RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options) {
+  // Every parallel loop of the run (simulator and stages) shares this many threads; the
+  // output does not depend on the number (each loop writes distinct cells in a fixed order).
+  tbb::task_arena arena(options.threads);
+  RunResult result;
+  arena.execute([&] { result = RunInArena(scenario, pipeline, options); });
   return result;
 }
 

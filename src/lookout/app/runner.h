@@ -22,6 +22,10 @@ struct RunOptions {
   std::optional<std::string> recording_path;   // none: record nothing
   // Called after each lidar cycle with the simulated time and the scenario's duration.
   std::function<void(double t_s, double duration_s)> progress;
+  // Write PNG images of the grid (occupancy, speed map) at the first lidar cycle at or after
+  // this time, into snapshot_dir.
+  std::optional<double> snapshot_s;
+  std::string snapshot_dir = ".";
 };
 
 struct RunResult {
@@ -31,11 +35,12 @@ struct RunResult {
   std::int64_t stereo_frames = 0;
   std::int64_t odometry_frames = 0;
   std::map<std::string, std::uint64_t> messages_per_topic;  // as recorded
-  double wall_s = 0.0;             // the whole run
+  double wall_s = 0.0;             // the whole run, less the scoring against ground truth
   double simulation_wall_s = 0.0;  // of which simulating the sensors
   eval::ScenarioMetrics metrics;   // the keys of docs/cli-contract.md that have run
   // Ground truth: actors whose footprint touches the ego's, and when (scenario time, s).
   std::vector<std::pair<std::string, double>> contacts;
+  std::vector<std::string> snapshots;  // PNG files written
 };
 
 // The order in which messages with equal timestamps reach the pipeline: odometry first (the

@@ -1,0 +1,216 @@
+// The extended grid's filter (docs/extended-grid.md steps 2-8): one ExtendedGrid::Update of the
+// 400 x 400 grid of 0.15 m cells (60 m x 60 m) on a junction scene, M = 7, against the slow
+// literal reference of steps 2-7 (reference_filter.h) side by side on the same input, and on a
+// 100 x 100 window of the same scene. Figures go in docs/PERFORMANCE.md.
+//
+// The scene: an analytic four-way junction (building blocks on the corners, parked and queued
+// cars, poles, pedestrians; as grid_foundation_bench.cc) with traffic: a car ahead of the ego at
+// 10 m/s, a car crossing at 15 m/s, an oncoming car at 12 m/s, two pedestrians crossing at
+// 1.5 m/s. A 641-beam 160 deg lidar 20 m west of the junction centre, 12.5 Hz. The filter is
+// warmed up for 25 scans, so the timed update sees a steady state (tracked static structure,
+// tracked movers, newly revealed occupancy at their edges), as on the road.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <tbb/task_arena.h>
+
+#include "lookout/core/messages.h"
+#include "lookout/core/pose2.h"
+#include "lookout/grid/extended_grid.h"
+#include "lookout/grid/inverse_sensor_model.h"
+#include "lookout/grid/reference_filter.h"
+#include "lookout/grid/scrolling_grid.h"
+
+namespace lookout::grid {
+namespace {
+
+using Eigen::Vector2d;
+
+constexpr double kDtS = 0.08;
+constexpr int kWarmupScans = 25;
+
+struct Box {
+  Vector2d lo;
+  Vector2d hi;
+};
+struct Mover {
+  Box box;  // at t = 0
+  Vector2d velocity_mps;
+};
+
+std::optional<double> RayBox(const Vector2d& o, const Vector2d& d, const Box& b) {
+  double t0 = 0.0;
+  double t1 = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 2; ++axis) {
+    if (d[axis] == 0.0) {
+      if (o[axis] < b.lo[axis] || o[axis] > b.hi[axis]) return std::nullopt;
+      continue;
+    }
+    double ta = (b.lo[axis] - o[axis]) / d[axis];
+    double tb = (b.hi[axis] - o[axis]) / d[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (t0 > t1 || t0 <= 0.0) return std::nullopt;
+  return t0;
+}
+
+std::vector<Box> StaticBoxes() {
+  std::vector<Box> boxes;
+  for (const double sx : {-1.0, 1.0}) {
+    for (const double sy : {-1.0, 1.0}) {
+      const Vector2d corner(10.0 * sx, 10.0 * sy);
+      const Vector2d far(200.0 * sx, 200.0 * sy);
+      boxes.push_back({corner.cwiseMin(far), corner.cwiseMax(far)});
+      const Vector2d pole(10.8 * sx, 10.8 * sy);
+      boxes.push_back({pole - Vector2d(0.15, 0.15), pole + Vector2d(0.15, 0.15)});
+    }
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double x = -45.0 + 6.0 * k + (k >= 3 ? 58.0 : 0.0);
+    boxes.push_back({Vector2d(x, 6.0), Vector2d(x + 4.5, 7.8)});
+  }
+  boxes.push_back({Vector2d(-8.0, 0.3), Vector2d(-3.5, 2.1)});
+  boxes.push_back({Vector2d(3.0, -9.5), Vector2d(4.8, -5.0)});
+  return boxes;
+}
+
+std::vector<Mover> Movers() {
+  return {
+      {{Vector2d(-14.0, -3.6), Vector2d(-9.5, -1.8)}, Vector2d(10.0, 0.0)},   // ahead of the ego
+      {{Vector2d(0.8, -26.0), Vector2d(2.6, -21.5)}, Vector2d(0.0, 15.0)},    // crossing
+      {{Vector2d(12.0, 2.3), Vector2d(16.5, 4.1)}, Vector2d(-12.0, 0.0)},     // oncoming
+      {{Vector2d(-6.0, 11.0), Vector2d(-5.5, 11.5)}, Vector2d(1.5, 0.0)},     // pedestrians
+      {{Vector2d(6.0, -11.5), Vector2d(6.5, -11.0)}, Vector2d(-1.5, 0.0)},
+  };
+}
+
+LidarScan ScanAt(int k, const Pose2& sensor_pose) {
+  LidarScan scan;
+  scan.mount = Pose2(2.2, 0.0, 0.0);
+  scan.angle_increment_rad = DegToRad(0.25);
+  scan.angle_min_rad = DegToRad(-80.0);
+  scan.max_range_m = 150.0;
+  std::vector<Box> boxes = StaticBoxes();
+  for (const Mover& m : Movers()) {
+    const Vector2d shift = m.velocity_mps * (k * kDtS);
+    boxes.push_back({m.box.lo + shift, m.box.hi + shift});
+  }
+  for (int i = 0; i < 641; ++i) {
+    const double a = sensor_pose.yaw + scan.BeamAngle(static_cast<std::size_t>(i));
+    const Vector2d d(std::cos(a), std::sin(a));
+    double best = std::numeric_limits<double>::infinity();
+    for (const Box& b : boxes) best = std::min(best, RayBox(sensor_pose.translation, d, b).value_or(best));
+    scan.ranges_m.push_back(best >= scan.max_range_m ? std::numeric_limits<float>::infinity()
+                                                     : static_cast<float>(best));
+  }
+  return scan;
+}
+
+// A warmed-up grid of `side` cells centred on the junction and the next measurement.
+struct WarmGrid {
+  ExtendedGrid grid;
+  MeasurementGrid next;
+};
+
+WarmGrid Warm(int side_cells) {
+  const Pose2 sensor_pose = Pose2(-20.0, -1.75, 0.0) * Pose2(2.2, 0.0, 0.0);
+  const ScrollingGridGeometry geometry(0.15, side_cells, side_cells,
+                                       CellIndex{-side_cells / 2, -side_cells / 2});
+  WarmGrid w{ExtendedGrid(geometry), MeasurementGrid{}};
+  const InverseSensorModelOptions ism;
+  for (int k = 0; k < kWarmupScans; ++k) {
+    w.grid.Update(ComputeInverseSensorModel(ScanAt(k, sensor_pose), sensor_pose, geometry, ism),
+                  kDtS);
+  }
+  w.next = ComputeInverseSensorModel(ScanAt(kWarmupScans, sensor_pose), sensor_pose, geometry, ism);
+  return w;
+}
+
+void Counters(benchmark::State& state, const ExtendedGrid& after) {
+  const auto& s = after.last_stats();
+  state.counters["sources"] = static_cast<double>(s.sources);
+  state.counters["associations"] = static_cast<double>(s.associations);
+  state.counters["updated_cells"] = static_cast<double>(s.updated_cells);
+  // Cell-updates per second over the whole window (what the paper's GPU figure counts).
+  state.counters["cell_updates_per_s"] = benchmark::Counter(
+      static_cast<double>(after.geometry().CellCount()) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
+  state.counters["sources_per_s"] = benchmark::Counter(
+      static_cast<double>(s.sources) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
+}
+
+// One update of the full 400 x 400 grid; Arg = TBB threads.
+void BM_ExtendedGridUpdate(benchmark::State& state) {
+  static const WarmGrid warm = Warm(400);
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  ExtendedGrid grid = warm.grid;
+  for (auto _ : state) {
+    state.PauseTiming();
+    grid = warm.grid;
+    state.ResumeTiming();
+    arena.execute([&] { grid.Update(warm.next, kDtS); });
+  }
+  Counters(state, grid);
+}
+BENCHMARK(BM_ExtendedGridUpdate)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The literal reference on the same 400 x 400 input, side by side with BM_ExtendedGridUpdate.
+void BM_ReferenceUpdate(benchmark::State& state) {
+  static const WarmGrid warm = Warm(400);
+  GridLayers layers = warm.grid.layers();
+  for (auto _ : state) {
+    state.PauseTiming();
+    layers = warm.grid.layers();
+    state.ResumeTiming();
+    ReferenceUpdate(layers, warm.grid.ids(), warm.next, kDtS, warm.grid.options());
+  }
+  ExtendedGrid after = warm.grid;
+  after.Update(warm.next, kDtS);
+  Counters(state, after);
+}
+BENCHMARK(BM_ReferenceUpdate)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+// The side-by-side pair on a 100 x 100 window (15 m, centred on the junction) of the same scene.
+constexpr int kSmallSide = 100;
+
+void BM_ExtendedGridUpdateSmall(benchmark::State& state) {
+  static const WarmGrid warm = Warm(kSmallSide);
+  tbb::task_arena arena(1);
+  ExtendedGrid grid = warm.grid;
+  for (auto _ : state) {
+    state.PauseTiming();
+    grid = warm.grid;
+    state.ResumeTiming();
+    arena.execute([&] { grid.Update(warm.next, kDtS); });
+  }
+  Counters(state, grid);
+}
+BENCHMARK(BM_ExtendedGridUpdateSmall)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_ReferenceUpdateSmall(benchmark::State& state) {
+  static const WarmGrid warm = Warm(kSmallSide);
+  GridLayers layers = warm.grid.layers();
+  for (auto _ : state) {
+    state.PauseTiming();
+    layers = warm.grid.layers();
+    state.ResumeTiming();
+    ReferenceUpdate(layers, warm.grid.ids(), warm.next, kDtS, warm.grid.options());
+  }
+  ExtendedGrid after = warm.grid;
+  after.Update(warm.next, kDtS);
+  Counters(state, after);
+}
+BENCHMARK(BM_ReferenceUpdateSmall)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+}  // namespace
+}  // namespace lookout::grid

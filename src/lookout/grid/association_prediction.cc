@@ -1,0 +1,127 @@
+#include "lookout/grid/association_prediction.h"
+
+#include <algorithm>
+#include <array>
+#include <span>
+#include <cmath>
+
+namespace lookout::grid {
+
+double AssociationSigmaCells(const float* class_pmf, double dt_s, double cell_size_m,
+                             const FilterOptions& options) {
+  double variance = 0.0;
+  for (std::size_t c = 0; c < kGridClassCount; ++c) {
+    const double s = options.class_velocity_sigma_mps[c];
+    variance += static_cast<double>(class_pmf[c]) * s * s;
+  }
+  return std::max(std::sqrt(variance) * dt_s / cell_size_m, options.min_sigma_cells);
+}
+
+bool IsSource(double occupancy, double seen, const FilterOptions& options) {
+  return occupancy >= options.active_occupancy ||
+         (seen >= options.seen_threshold && occupancy >= options.tracked_min_occupancy);
+}
+
+SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
+                             double confidence, const float* class_pmf, double dt_s,
+                             double cell_size_m, const FilterOptions& options) {
+  SearchWindow w;
+  const double max_cells = options.max_displacement_cells;
+  const bool newly_seen = seen < options.seen_threshold;
+  w.mean_x_cells = std::clamp(velocity_x_mps * dt_s / cell_size_m, -max_cells, max_cells);
+  w.mean_y_cells = std::clamp(velocity_y_mps * dt_s / cell_size_m, -max_cells, max_cells);
+  w.center = {static_cast<int>(std::lround(w.mean_x_cells)),
+              static_cast<int>(std::lround(w.mean_y_cells))};
+  w.sigma_cells = AssociationSigmaCells(class_pmf, dt_s, cell_size_m, options);
+  if (!newly_seen && confidence >= options.known_confidence) {
+    w.half = (options.window_size_cells - 1) / 2;
+    w.stride = 1;
+  } else {
+    w.half = (options.new_window_size_cells - 1) / 2;
+    w.stride = options.new_window_stride_cells;
+    w.stay_weight = options.new_stay_probability;
+    w.stay_sigma_cells = options.min_sigma_cells;
+    w.sigma_cells = std::max(w.sigma_cells, options.new_sigma_m / cell_size_m);
+  }
+  return w;
+}
+
+Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
+                                 const WindowIndexer& indexer, double dt_s,
+                                 const FilterOptions& options) {
+  Associations a;
+  const auto occupancy = layers.Values(ids.occupancy);
+  const auto seen = layers.Values(ids.seen);
+  const auto vx = layers.Values(ids.velocity_x_mps);
+  const auto vy = layers.Values(ids.velocity_y_mps);
+  const auto confidence = layers.Values(ids.velocity_confidence);
+  const double cell_size_m = layers.geometry().cell_size_m();
+  std::array<std::span<const float>, kGridClassCount> class_layers;
+  for (std::size_t k = 0; k < kGridClassCount; ++k) class_layers[k] = layers.Values(ids.class_pmf[k]);
+  std::array<std::span<const float>, kNeighbourCount> rigidity_layers;
+  for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity_layers[d] = layers.Values(ids.rigidity[d]);
+
+  // Sources in storage order (a fixed order for a given window: every later sum follows it).
+  // One pass over two contiguous layers; the local cell is computed only for the sources.
+  const ScrollingGridGeometry& geometry = layers.geometry();
+  for (std::size_t cell = 0; cell < occupancy.size(); ++cell) {
+    if (!IsSource(static_cast<double>(occupancy[cell]), static_cast<double>(seen[cell]), options)) {
+      continue;
+    }
+    a.source.push_back(cell);
+    a.source_local.push_back(geometry.LocalFromGlobal(geometry.GlobalFromStorage(cell)));
+  }
+  const std::size_t sources = a.SourceCount();
+  a.occupancy.resize(sources);
+  a.seen.resize(sources);
+  a.velocity_x_mps.resize(sources);
+  a.velocity_y_mps.resize(sources);
+  a.confidence.resize(sources);
+  a.class_pmf.resize(sources * kGridClassCount);
+  a.rigidity.resize(sources * kNeighbourCount);
+  a.window.resize(sources);
+  a.first_entry.resize(sources + 1);
+  a.first_entry[0] = 0;
+  for (std::size_t s = 0; s < sources; ++s) {
+    const std::size_t cell = a.source[s];
+    a.occupancy[s] = occupancy[cell];
+    a.seen[s] = seen[cell];
+    a.velocity_x_mps[s] = vx[cell];
+    a.velocity_y_mps[s] = vy[cell];
+    a.confidence[s] = confidence[cell];
+    for (std::size_t k = 0; k < kGridClassCount; ++k) {
+      a.class_pmf[s * kGridClassCount + k] = class_layers[k][cell];
+    }
+    for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+      a.rigidity[s * kNeighbourCount + d] = rigidity_layers[d][cell];
+    }
+    a.window[s] = SearchWindowFor(vx[cell], vy[cell], seen[cell], confidence[cell],
+                                  &a.class_pmf[s * kGridClassCount], dt_s, cell_size_m, options);
+    a.first_entry[s + 1] = a.first_entry[s] + a.window[s].EntryCount();
+  }
+  const std::size_t entries = a.first_entry.back();
+  a.target.resize(entries);
+  a.entry_source.resize(entries);
+  a.weight.resize(entries);
+
+  ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      const SearchWindow& w = a.window[s];
+      const CellIndex from = a.source_local[s];
+      const std::size_t first = a.first_entry[s];
+      for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+        const CellIndex d = w.Displacement(k);
+        const int tx = from.ix + d.ix;
+        const int ty = from.iy + d.iy;
+        a.target[first + k] = indexer.Inside(tx, ty)
+                                  ? static_cast<std::int64_t>(indexer.Storage(tx, ty))
+                                  : kOutsideWindow;
+        a.entry_source[first + k] = static_cast<std::uint32_t>(s);
+      }
+      ComputePsi(w, &a.weight[first]);
+    }
+  });
+  return a;
+}
+
+}  // namespace lookout::grid

@@ -1,0 +1,42 @@
+#pragma once
+
+// Step 2 of docs/extended-grid.md: local association prediction, the paper's eq. 8-9.
+//
+//   Psi(j -> i) = g(x_j + V(j) dt - x_i, sigma_C(j)) / sum_{i' in W(j)} g(...)        (eq. 8-9)
+//
+// with g an isotropic Gaussian, W(j) the search window of j. Beyond the paper:
+//   - W(j) is centred on the predicted displacement round(V(j) dt / cell), not on x_j, so the
+//     speed is not capped at (M / 2) cell / dt;
+//   - newly seen occupancy (S(j) < seen_threshold: no velocity yet), or occupancy whose velocity
+//     confidence is below known_confidence, gets a coarse wide window
+//     (FilterOptions::new_window_*) and a wide sigma, so a 20 m/s car is found in one cycle;
+//   - sigma_C(j) = sqrt(sum_c C(j, c) sigma_c^2) dt: the class pmf mixes the per-class velocity
+//     noises (the variance of the mixture's velocity change, centred).
+// Only sources (IsSource) move; the rest of the map stays in place.
+
+#include "lookout/grid/filter_options.h"
+#include "lookout/grid/filter_state.h"
+#include "lookout/grid/scrolling_grid.h"
+
+namespace lookout::grid {
+
+// The position sigma of eq. 8 for a cell of class pmf `class_pmf`, in cells.
+double AssociationSigmaCells(const float* class_pmf, double dt_s, double cell_size_m,
+                             const FilterOptions& options);
+
+// Whether a cell is a source (its occupancy is moved): O >= active_occupancy, or tracked
+// (S >= seen_threshold) and O >= tracked_min_occupancy. The rest of the map stays in place.
+bool IsSource(double occupancy, double seen, const FilterOptions& options);
+
+// The search window of a source with the given state (used by the fast path and the reference).
+SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
+                             double confidence, const float* class_pmf, double dt_s, double cell_size_m,
+                             const FilterOptions& options);
+
+// Eq. 8-9 for every active cell: the sources with their state copied, their windows, and the
+// normalised Psi in Associations::weight. Parallel over sources; deterministic.
+Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
+                                 const WindowIndexer& indexer, double dt_s,
+                                 const FilterOptions& options);
+
+}  // namespace lookout::grid

@@ -1,0 +1,62 @@
+#include "lookout/grid/extended_grid.h"
+
+#include <array>
+#include <cassert>
+#include <span>
+
+#include "lookout/grid/association_prediction.h"
+#include "lookout/grid/interaction_constraints.h"
+#include "lookout/grid/measurement_weighting.h"
+#include "lookout/grid/occupancy_update.h"
+#include "lookout/grid/rigidity_update.h"
+#include "lookout/grid/velocity_update.h"
+
+namespace lookout::grid {
+
+ExtendedGrid::ExtendedGrid(const ScrollingGridGeometry& geometry, const FilterOptions& options)
+    : options_(options), layers_(geometry) {
+  options_.Validate();
+  ids_ = AddFilterLayers(layers_);
+  workspace_.Resize(geometry.CellCount());
+}
+
+void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
+  assert(z.geometry.window_origin() == geometry().window_origin());
+  assert(z.p_occupied.size() == geometry().CellCount());
+  assert(dt_s > 0.0);
+  const WindowIndexer indexer(geometry());
+
+  Associations associations = PredictAssociations(layers_, ids_, indexer, dt_s, options_);  // 2
+  WeightByMeasurement(z, associations);                                                    // 3
+  MapSources(associations, workspace_);
+  const TargetIndex targets = BuildTargetIndex(associations, workspace_);
+  ApplyConstraints(indexer, targets, workspace_, options_, associations);                  // 4
+  const std::vector<UpdateCell> cells = BuildUpdateList(targets, associations, z, workspace_);
+
+  UpdateOccupancy(associations, targets, cells, z, options_, layers_.Values(ids_.occupancy),
+                  layers_.Values(ids_.seen));                                              // 5
+  UpdateVelocity(associations, targets, cells, dt_s, geometry().cell_size_m(), options_,
+                 layers_.Values(ids_.seen),
+                 VelocityLayers{layers_.Values(ids_.velocity_x_mps),
+                                layers_.Values(ids_.velocity_y_mps),
+                                layers_.Values(ids_.velocity_confidence)});                // 6
+  std::array<std::span<float>, kNeighbourCount> rigidity;
+  for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d] = layers_.Values(ids_.rigidity[d]);
+  UpdateRigidity(associations, targets, cells, indexer, workspace_, rigidity);             // 7
+  std::array<std::span<float>, kGridClassCount> classes;
+  for (std::size_t c = 0; c < kGridClassCount; ++c) classes[c] = layers_.Values(ids_.class_pmf[c]);
+  UpdateClasses(associations, targets, cells, geometry(), indexer, options_,
+                ClassInputs{layers_.Values(ids_.occupancy), layers_.Values(ids_.seen),
+                            layers_.Values(ids_.velocity_x_mps),
+                            layers_.Values(ids_.velocity_y_mps),
+                            layers_.Values(ids_.velocity_confidence)},
+                stereo_, classes);                                                         // 8
+  stereo_.clear();
+  ClearSourceMap(associations, workspace_);
+
+  stats_.sources = associations.SourceCount();
+  stats_.associations = associations.EntryCount();
+  stats_.updated_cells = cells.size();
+}
+
+}  // namespace lookout::grid

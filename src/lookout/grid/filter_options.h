@@ -1,0 +1,101 @@
+#pragma once
+
+// Options of the extended grid's filter (docs/extended-grid.md steps 2-8), one plain struct with
+// defaults and units in the names. Kept beside GridOptions rather than inside it so the filter can
+// be configured and validated on its own; GridOptions keeps the window and the sensor model.
+
+#include <array>
+#include <string>
+
+namespace lookout::grid {
+
+// The class layer's classes, in layer order (docs/extended-grid.md, "what the grid holds").
+enum class GridClass { kStatic = 0, kPedestrian, kCyclist, kVehicle, kUnknown };
+inline constexpr int kGridClassCount = 5;
+using ClassPmf = std::array<float, kGridClassCount>;
+
+struct FilterOptions {
+  // --- step 2, association prediction (eq. 8-9)
+  // Cells whose occupancy is at least this are moved ("worth moving"); the others stay in place.
+  // Above the 0.5 prior so that unknown space costs nothing.
+  double active_occupancy = 0.6;
+  // Tracked occupancy (seen probability >= seen_threshold) keeps moving down to this
+  // occupancy: an occluded object's mass spreads (eq. 8 with 0.5 measurements) and must keep
+  // moving as it thins out, instead of freezing where it falls under active_occupancy.
+  double tracked_min_occupancy = 0.05;
+  // M: the search window of a tracked cell, centred on its predicted displacement V dt (not on
+  // the cell itself, as in the paper: that is what lifts the paper's speed cap M/2 * cell / dt).
+  int window_size_cells = 7;
+  // Newly seen occupancy (seen probability S below seen_threshold) has no velocity yet: it is
+  // searched in a coarse window of new_window_size_cells samples new_window_stride_cells apart,
+  // i.e. displacements up to +-(size / 2) * stride cells = +-12 cells by default: 1.8 m per
+  // cycle at 0.15 m, 22.5 m/s at 12.5 Hz. Coarse rather than dense: 13^2 = 169 candidates
+  // instead of 25^2 = 625, and the measurement weighting (eq. 10) picks the occupied samples;
+  // once the velocity is known the fine window takes over, centred on it.
+  int new_window_size_cells = 13;
+  int new_window_stride_cells = 2;
+  double seen_threshold = 0.5;
+  // ... and so is occupancy whose velocity is not yet trusted (confidence below this): the
+  // coarse window is then centred on the uncertain prediction, so an early wrong estimate
+  // (a box's interior is ambiguous) can still be corrected by the next scans.
+  double known_confidence = 0.25;
+  // Predicted displacements are clamped to this many cells per cycle (a sanity bound: 40 m/s
+  // at 0.15 m and 12.5 Hz is 21 cells).
+  int max_displacement_cells = 24;
+  // sigma_C of eq. 8 per class: the standard deviation of the velocity change in one cycle,
+  // m/s. A pedestrian can stop or turn within a step; a vehicle changes speed faster in
+  // absolute terms but cannot turn on the spot; unknown is the widest. The position sigma is
+  // sqrt(sum_c C(c) sigma_c^2) * dt, floored at min_sigma_cells cells.
+  std::array<double, kGridClassCount> class_velocity_sigma_mps = {0.2, 1.0, 1.0, 1.5, 2.0};
+  // Why a floor, and why small: the prediction's spread is also the mass that leaks into free
+  // cells each cycle (eq. 10 weighs them down, it does not exclude them), which the sensor's
+  // p_hit must win back; 0.4 cell keeps the leak of a static cell near 3 %.
+  double min_sigma_cells = 0.4;
+  // The prior of newly seen occupancy: its position sigma, m (about 6 cells).
+  double new_sigma_m = 0.9;
+  // ... mixed with a component of this probability that follows the prediction exactly (a
+  // Gaussian of min_sigma_cells; for newly seen occupancy, V = 0: it stays in place): most newly
+  // revealed occupancy is static structure, and a wide search alone would smear it over the
+  // coarse window.
+  double new_stay_probability = 0.5;
+
+  // --- step 4, interaction constraints (eq. 11)
+  // No convergence: a move j -> i is weighted by exp(-excess^2 / (2 sigma^2)), excess being the
+  // occupancy mass that i would hold beyond 1.
+  double no_convergence_sigma = 0.3;
+  // Rigidity: a move is weighted by how well its displacement agrees with those of the linked
+  // neighbours, a Gaussian of this width in cells.
+  double rigidity_sigma_cells = 1.0;
+  // The link strength of eq. 11 is min(1, gain D): D = sum_a P(a) P'(a) of eq. 15 is at most
+  // sum_a P(a)^2, about 0.3 for the sharpest pmfs a 0.15 m grid holds (sigma ~ 0.5 cell), so D
+  // itself never says "certainly one body". A gain of 3 makes a rigid box's velocities agree
+  // better (rms spread 0.28 instead of 0.37 m/s at 3 m/s) but biases its mean (+0.4 m/s) and
+  // saturates the links of the random reference worlds; 1 (D as the paper has it) for now.
+  double rigidity_link_gain = 1.0;
+  bool enable_rigidity_constraint = true;
+  bool enable_no_convergence_constraint = true;
+
+  // --- step 5, occupancy (eq. 12-13)
+  // gamma: the renewal rate. Space that no association covers (a cell whose content moved out
+  // and nothing moved in) gets the occupancy prior gamma / 2: renewed towards unknown.
+  double renewal_rate = 0.5;
+  // Occupancy is kept inside [min, 1 - min] so that a cell stays revisable.
+  double occupancy_clamp = 0.02;
+
+  // --- step 6, velocity (eq. 14)
+  // Weight of the new displacement estimate against the carried velocity, for a confident
+  // carried velocity (a velocity of zero confidence is replaced).
+  double velocity_blend = 0.3;
+  // The displacement spread (cells^2) at which the confidence is one half.
+  double confidence_spread_cells2 = 2.0;
+
+  // --- step 8, classes
+  double class_floor = 0.01;           // mixed in uniformly each cycle: classes stay revisable
+  double extent_radius_cells = 6.0;    // the local extent proxy's box half-size
+  double stereo_weight = 1.0;          // exponent on the stereo likelihood
+
+  // Throws lookout::InputError naming the first field out of range.
+  void Validate(const std::string& source = "filter options") const;
+};
+
+}  // namespace lookout::grid

@@ -1,0 +1,155 @@
+#include "lookout/grid/filter_state.h"
+
+#include <cassert>
+#include <cmath>
+#include <string>
+
+namespace lookout::grid {
+
+FilterLayerIds AddFilterLayers(GridLayers& layers) {
+  FilterLayerIds ids;
+  ids.occupancy = layers.Add("occupancy", 0.5f);
+  ids.velocity_x_mps = layers.Add("velocity_x_mps", 0.0f);
+  ids.velocity_y_mps = layers.Add("velocity_y_mps", 0.0f);
+  ids.velocity_confidence = layers.Add("velocity_confidence", 0.0f);
+  ids.seen = layers.Add("seen", 0.0f);
+  for (int d = 0; d < kNeighbourCount; ++d) {
+    ids.rigidity[static_cast<std::size_t>(d)] = layers.Add("rigidity_" + std::to_string(d), 0.0f);
+  }
+  static constexpr std::array<const char*, kGridClassCount> kNames = {
+      "class_static", "class_pedestrian", "class_cyclist", "class_vehicle", "class_unknown"};
+  for (int c = 0; c < kGridClassCount; ++c) {
+    ids.class_pmf[static_cast<std::size_t>(c)] =
+        layers.Add(kNames[static_cast<std::size_t>(c)], 1.0f / kGridClassCount);
+  }
+  return ids;
+}
+
+WindowIndexer::WindowIndexer(const ScrollingGridGeometry& geometry)
+    : width_(geometry.width()), height_(geometry.height()) {
+  const CellIndex origin = geometry.window_origin();
+  column_.resize(static_cast<std::size_t>(width_));
+  row_base_.resize(static_cast<std::size_t>(height_));
+  for (int x = 0; x < width_; ++x) {
+    column_[static_cast<std::size_t>(x)] =
+        static_cast<std::size_t>(geometry.StorageColumn(origin.ix + x));
+  }
+  for (int y = 0; y < height_; ++y) {
+    row_base_[static_cast<std::size_t>(y)] =
+        static_cast<std::size_t>(geometry.StorageRow(origin.iy + y)) *
+        static_cast<std::size_t>(width_);
+  }
+}
+
+std::int64_t SearchWindow::EntryOf(const CellIndex& d) const {
+  const int dx = d.ix - center.ix + stride * half;
+  const int dy = d.iy - center.iy + stride * half;
+  if (dx < 0 || dy < 0 || dx % stride != 0 || dy % stride != 0) return -1;
+  const int u = dx / stride;
+  const int v = dy / stride;
+  if (u >= size() || v >= size()) return -1;
+  return static_cast<std::int64_t>(v) * size() + u;
+}
+
+void ComputePsi(const SearchWindow& w, float* psi) {
+  const std::size_t n = w.EntryCount();
+  const double inv_two_var = 1.0 / (2.0 * w.sigma_cells * w.sigma_cells);
+  const double inv_two_stay_var = 1.0 / (2.0 * w.stay_sigma_cells * w.stay_sigma_cells);
+  double sum = 0.0, stay_sum = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const CellIndex d = w.Displacement(k);
+    const double ex = d.ix - w.mean_x_cells;
+    const double ey = d.iy - w.mean_y_cells;
+    sum += std::exp(-(ex * ex + ey * ey) * inv_two_var);
+    if (w.stay_weight > 0.0) stay_sum += std::exp(-(ex * ex + ey * ey) * inv_two_stay_var);
+  }
+  // The window holds its own mean (|centre - mean| <= 0.5 cell), so both sums are > 0.
+  const double move_scale = (1.0 - w.stay_weight) / sum;
+  const double stay_scale = w.stay_weight > 0.0 ? w.stay_weight / stay_sum : 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const CellIndex d = w.Displacement(k);
+    const double ex = d.ix - w.mean_x_cells;
+    const double ey = d.iy - w.mean_y_cells;
+    const double r2 = ex * ex + ey * ey;
+    double p = move_scale * std::exp(-r2 * inv_two_var);
+    if (stay_scale > 0.0) p += stay_scale * std::exp(-r2 * inv_two_stay_var);
+    psi[k] = static_cast<float>(p);
+  }
+}
+
+void FilterWorkspace::Resize(std::size_t cells) {
+  if (source_of_cell.size() != cells) source_of_cell.assign(cells, kNone);
+  if (slot_of_cell.size() != cells) slot_of_cell.assign(cells, kNone);
+}
+
+TargetIndex BuildTargetIndex(const Associations& associations, FilterWorkspace& workspace) {
+  // A counting sort by target, sequential: two passes over the entries in source order. The
+  // order of first appearance and the order within a target are therefore fixed.
+  TargetIndex index;
+  std::vector<std::size_t> counts;
+  const std::size_t entries = associations.EntryCount();
+  for (std::size_t e = 0; e < entries; ++e) {
+    const std::int64_t t = associations.target[e];
+    if (t == kOutsideWindow) continue;
+    std::uint32_t& slot = workspace.slot_of_cell[static_cast<std::size_t>(t)];
+    if (slot == FilterWorkspace::kNone) {
+      slot = static_cast<std::uint32_t>(index.targets.size());
+      index.targets.push_back(static_cast<std::size_t>(t));
+      counts.push_back(0);
+    }
+    ++counts[slot];
+  }
+  index.first.resize(index.targets.size() + 1);
+  index.first[0] = 0;
+  for (std::size_t s = 0; s < counts.size(); ++s) index.first[s + 1] = index.first[s] + counts[s];
+  index.entries.resize(index.first.back());
+  std::vector<std::size_t> cursor(index.first.begin(), index.first.end() - 1);
+  for (std::size_t e = 0; e < entries; ++e) {
+    const std::int64_t t = associations.target[e];
+    if (t == kOutsideWindow) continue;
+    const std::uint32_t slot = workspace.slot_of_cell[static_cast<std::size_t>(t)];
+    index.entries[cursor[slot]++] = static_cast<std::uint32_t>(e);
+  }
+  for (const std::size_t t : index.targets) workspace.slot_of_cell[t] = FilterWorkspace::kNone;
+  return index;
+}
+
+std::vector<UpdateCell> BuildUpdateList(const TargetIndex& targets, const Associations& a,
+                                        const MeasurementGrid& z, FilterWorkspace& workspace) {
+  std::vector<UpdateCell> cells;
+  cells.reserve(targets.targets.size() + a.SourceCount() + z.touched.size());
+  // slot_of_cell marks the cells already listed (kListed), cleared at the end.
+  constexpr std::uint32_t kListed = FilterWorkspace::kNone - 1;
+  for (std::size_t t = 0; t < targets.targets.size(); ++t) {
+    const std::size_t cell = targets.targets[t];
+    cells.push_back({cell, static_cast<std::uint32_t>(t), workspace.source_of_cell[cell]});
+    workspace.slot_of_cell[cell] = kListed;
+  }
+  for (std::size_t s = 0; s < a.SourceCount(); ++s) {
+    const std::size_t cell = a.source[s];
+    if (workspace.slot_of_cell[cell] == kListed) continue;
+    cells.push_back({cell, FilterWorkspace::kNone, static_cast<std::uint32_t>(s)});
+    workspace.slot_of_cell[cell] = kListed;
+  }
+  for (const std::size_t cell : z.touched) {
+    if (workspace.slot_of_cell[cell] == kListed) continue;
+    cells.push_back({cell, FilterWorkspace::kNone, workspace.source_of_cell[cell]});
+    workspace.slot_of_cell[cell] = kListed;
+  }
+  for (const UpdateCell& u : cells) workspace.slot_of_cell[u.cell] = FilterWorkspace::kNone;
+  return cells;
+}
+
+void MapSources(const Associations& associations, FilterWorkspace& workspace) {
+  for (std::size_t s = 0; s < associations.SourceCount(); ++s) {
+    workspace.source_of_cell[associations.source[s]] = static_cast<std::uint32_t>(s);
+  }
+}
+
+void ClearSourceMap(const Associations& associations, FilterWorkspace& workspace) {
+  for (const std::size_t cell : associations.source) {
+    workspace.source_of_cell[cell] = FilterWorkspace::kNone;
+  }
+}
+
+}  // namespace lookout::grid

@@ -1,0 +1,194 @@
+#pragma once
+
+// The state the extended grid's filter works on (docs/extended-grid.md steps 2-8): the named
+// layers of the grid, the associations of one cycle (who may move where, with which
+// probability), and the target index that turns the per-source associations into per-target
+// gathers. Shared by the stage files (association_prediction.h ... class_update.h).
+//
+// Coordinates: sources and targets are storage indices (scrolling_grid.h); displacements are in
+// cells of the odometry frame's lattice. Targets outside the window are kOutsideWindow: their
+// mass leaves the grid.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "lookout/core/grid_geometry.h"
+#include "lookout/grid/filter_options.h"
+#include "lookout/grid/inverse_sensor_model.h"
+#include "lookout/grid/scrolling_grid.h"
+
+namespace lookout::grid {
+
+inline constexpr int kNeighbourCount = 8;
+// The 8-neighbourhood in a fixed order; rigidity layer d links a cell with the cell at
+// kNeighbourOffsets[d]. Opposite directions are d and (d + 4) % 8.
+inline constexpr std::array<CellIndex, kNeighbourCount> kNeighbourOffsets = {
+    CellIndex{1, 0}, CellIndex{1, 1}, CellIndex{0, 1}, CellIndex{-1, 1},
+    CellIndex{-1, 0}, CellIndex{-1, -1}, CellIndex{0, -1}, CellIndex{1, -1}};
+
+// The filter's layers in a GridLayers, by name ("occupancy", "velocity_x_mps", ...).
+struct FilterLayerIds {
+  LayerId occupancy;            // O(x), eq. 1; reset 0.5
+  LayerId velocity_x_mps;       // V(x), eq. 4 and 14; reset 0
+  LayerId velocity_y_mps;
+  LayerId velocity_confidence;  // in [0, 1]; reset 0
+  LayerId seen;                 // S(x): P(the occupancy was carried in from the previous map)
+  std::array<LayerId, kNeighbourCount> rigidity;  // D(x, x + offset[d]), eq. 15; reset 0
+  std::array<LayerId, kGridClassCount> class_pmf; // C(x, c); reset uniform
+};
+
+// Adds the filter's layers to `layers` (a programming error if their names exist).
+FilterLayerIds AddFilterLayers(GridLayers& layers);
+
+// Local (window) cell -> storage index in O(1) without modulo: per-column and per-row tables.
+class WindowIndexer {
+ public:
+  explicit WindowIndexer(const ScrollingGridGeometry& geometry);
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool Inside(int local_x, int local_y) const {
+    return local_x >= 0 && local_y >= 0 && local_x < width_ && local_y < height_;
+  }
+  // Precondition: Inside(local_x, local_y).
+  std::size_t Storage(int local_x, int local_y) const {
+    return row_base_[static_cast<std::size_t>(local_y)] +
+           column_[static_cast<std::size_t>(local_x)];
+  }
+
+ private:
+  int width_;
+  int height_;
+  std::vector<std::size_t> column_;
+  std::vector<std::size_t> row_base_;
+};
+
+inline constexpr std::int64_t kOutsideWindow = -1;
+
+// One source's search window (eq. 8): candidate displacements center + stride * (u - half,
+// v - half) for u, v in [0, 2 half], entry k = v * size + u. The Gaussian of eq. 8 is centred on
+// the exact predicted displacement `mean`, the window on its rounding.
+struct SearchWindow {
+  CellIndex center;
+  int half = 0;
+  int stride = 1;
+  double mean_x_cells = 0.0;
+  double mean_y_cells = 0.0;
+  double sigma_cells = 1.0;
+  // A coarse (wide) window mixes in a component of this weight and sigma that follows the
+  // prediction exactly: for newly seen occupancy (V = 0) it stays where it was seen (most newly
+  // revealed occupancy in a street is static structure). Eq. 8 becomes
+  // (1 - w) g(., sigma) + w g(., stay_sigma), each part normalised over the window.
+  double stay_weight = 0.0;
+  double stay_sigma_cells = 1.0;
+  int size() const { return 2 * half + 1; }
+  std::size_t EntryCount() const {
+    return static_cast<std::size_t>(size()) * static_cast<std::size_t>(size());
+  }
+  CellIndex Displacement(std::size_t k) const {
+    const int n = size();
+    const int u = static_cast<int>(k % static_cast<std::size_t>(n));
+    const int v = static_cast<int>(k / static_cast<std::size_t>(n));
+    return {center.ix + stride * (u - half), center.iy + stride * (v - half)};
+  }
+  // The entry of displacement d, or -1 when d is not one of the window's samples.
+  std::int64_t EntryOf(const CellIndex& d) const;
+};
+
+// Psi of eq. 8-9 over the window's entries (EntryCount() values summing to 1).
+void ComputePsi(const SearchWindow& window, float* psi);
+
+// The associations of one cycle, structure of arrays. Sources are the cells IsSource selects
+// (association_prediction.h), in storage order; their previous state is copied here, so the
+// stages can overwrite the layers in place.
+struct Associations {
+  // --- per source
+  std::vector<std::size_t> source;  // storage index
+  std::vector<CellIndex> source_local;
+  std::vector<float> occupancy;     // O_{k-1}(j)
+  std::vector<float> seen;          // S_{k-1}(j)
+  std::vector<float> velocity_x_mps;
+  std::vector<float> velocity_y_mps;
+  std::vector<float> confidence;
+  std::vector<float> class_pmf;     // kGridClassCount per source
+  std::vector<float> rigidity;      // kNeighbourCount per source: D_{k-1}(j, j + offset[d])
+  std::vector<SearchWindow> window;
+  std::vector<std::size_t> first_entry;  // SourceCount() + 1
+  // --- per entry (j -> i)
+  std::vector<std::int64_t> target;      // storage index of i, or kOutsideWindow
+  std::vector<std::uint32_t> entry_source;
+  std::vector<float> weight;             // P(j -> i), summing to 1 over each source's window
+
+  std::size_t SourceCount() const { return source.size(); }
+  std::size_t EntryCount() const { return target.size(); }
+};
+
+// Per target, the entries that end in it, in source order: every gather visits its
+// contributions in one fixed order, so sums are identical for any thread count.
+struct TargetIndex {
+  std::vector<std::size_t> targets;  // storage indices, in order of first appearance
+  std::vector<std::size_t> first;    // targets.size() + 1
+  std::vector<std::uint32_t> entries;
+};
+
+// Scratch arrays over the whole window, kept between cycles so a steady pipeline allocates
+// nothing; every user leaves them as it found them (all kNone).
+struct FilterWorkspace {
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> source_of_cell;  // storage index -> source id
+  std::vector<std::uint32_t> slot_of_cell;    // storage index -> target slot
+  void Resize(std::size_t cells);
+};
+
+TargetIndex BuildTargetIndex(const Associations& associations, FilterWorkspace& workspace);
+
+// Sets workspace.source_of_cell for the sources (undo with ClearSourceMap).
+void MapSources(const Associations& associations, FilterWorkspace& workspace);
+void ClearSourceMap(const Associations& associations, FilterWorkspace& workspace);
+
+// A cell whose state this cycle may change: a target of some association (target_slot into the
+// TargetIndex), a source (its mass may leave), or a cell with evidence in z. Every other cell
+// keeps its state: it stays in place (inactive) and its measurement is 0.5.
+struct UpdateCell {
+  std::size_t cell = 0;
+  std::uint32_t target_slot = FilterWorkspace::kNone;
+  std::uint32_t source = FilterWorkspace::kNone;  // its source id if it is a source
+};
+// Targets first (in TargetIndex order), then the other sources, then the other evidence cells.
+// Needs workspace.source_of_cell mapped (MapSources).
+std::vector<UpdateCell> BuildUpdateList(const TargetIndex& targets, const Associations& associations,
+                                        const MeasurementGrid& z, FilterWorkspace& workspace);
+
+// The weighted mean over the contributions w_ji = P(j -> i) O(j) that one target gathers, of a
+// per-source quantity: the carrying rule of every per-cell attribute (velocity, class, links).
+// Returns the weight sum.
+template <typename PerSource>
+double GatherWeighted(const Associations& a, const TargetIndex& targets, std::uint32_t slot,
+                      const PerSource& per_source) {
+  double sum = 0.0;
+  for (std::size_t n = targets.first[slot]; n < targets.first[slot + 1]; ++n) {
+    const std::uint32_t e = targets.entries[n];
+    const std::uint32_t s = a.entry_source[e];
+    const double w = static_cast<double>(a.weight[e]) * static_cast<double>(a.occupancy[s]);
+    per_source(e, s, w);
+    sum += w;
+  }
+  return sum;
+}
+
+// Runs body(begin, end) over [0, n) in blocks of at most `block` items, in parallel. Callers write
+// only to items of their own block, so the result does not depend on the thread count.
+template <typename Body>
+void ParallelForBlocks(std::size_t n, std::size_t block, const Body& body) {
+  if (n == 0) return;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, block),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); },
+                    tbb::simple_partitioner());
+}
+
+}  // namespace lookout::grid

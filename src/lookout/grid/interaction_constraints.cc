@@ -1,0 +1,177 @@
+#include "lookout/grid/interaction_constraints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace lookout::grid {
+namespace {
+
+struct DisplacementMoments {
+  double mean_x_cells = 0.0;
+  double mean_y_cells = 0.0;
+  double variance_cells2 = 0.0;  // per axis
+};
+
+DisplacementMoments MomentsOf(const Associations& a, std::size_t s) {
+  const SearchWindow& w = a.window[s];
+  const std::size_t first = a.first_entry[s];
+  double sum = 0.0, mx = 0.0, my = 0.0, mxx = 0.0;
+  for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+    const double p = static_cast<double>(a.weight[first + k]);
+    const CellIndex d = w.Displacement(k);
+    sum += p;
+    mx += p * d.ix;
+    my += p * d.iy;
+    mxx += p * (d.ix * d.ix + d.iy * d.iy);
+  }
+  DisplacementMoments m;
+  if (sum <= 0.0) return m;
+  m.mean_x_cells = mx / sum;
+  m.mean_y_cells = my / sum;
+  const double total_var =
+      mxx / sum - m.mean_x_cells * m.mean_x_cells - m.mean_y_cells * m.mean_y_cells;
+  m.variance_cells2 = std::max(0.0, 0.5 * total_var);
+  return m;
+}
+
+}  // namespace
+
+void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
+                      const FilterWorkspace& workspace, const FilterOptions& options,
+                      Associations& a) {
+  // In(i) per entry's target, gathered per target (each entry belongs to one target).
+  std::vector<float> inflow_at_entry(a.EntryCount(), 0.0f);
+  if (options.enable_no_convergence_constraint) {
+    ParallelForBlocks(targets.targets.size(), 512, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t) {
+        double inflow = 0.0;
+        for (std::size_t n = targets.first[t]; n < targets.first[t + 1]; ++n) {
+          const std::uint32_t e = targets.entries[n];
+          inflow += static_cast<double>(a.weight[e]) *
+                    static_cast<double>(a.occupancy[a.entry_source[e]]);
+        }
+        for (std::size_t n = targets.first[t]; n < targets.first[t + 1]; ++n) {
+          inflow_at_entry[targets.entries[n]] = static_cast<float>(inflow);
+        }
+      }
+    });
+  }
+
+  std::vector<DisplacementMoments> moments(a.SourceCount());
+  // Each source's Pw blurred by the rigidity kernel on its own window lattice:
+  // B_y(a) = sum_a' Pw(y moves by a') K(a - a'), separable (K is a product of two 1-D Gaussians),
+  // O(M^3) per source. A linked neighbour whose window has the same lattice as the cell's enters
+  // through B_y exactly; otherwise through its two moments.
+  std::vector<float> blurred(options.enable_rigidity_constraint ? a.EntryCount() : 0);
+  const double r2 = options.rigidity_sigma_cells * options.rigidity_sigma_cells;
+  if (options.enable_rigidity_constraint) {
+    ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+      std::vector<double> kernel, rows;
+      for (std::size_t s = begin; s < end; ++s) {
+        moments[s] = MomentsOf(a, s);
+        const SearchWindow& w = a.window[s];
+        const auto n = static_cast<std::size_t>(w.size());
+        kernel.assign(n, 0.0);
+        for (std::size_t d = 0; d < n; ++d) {
+          const double dist = static_cast<double>(w.stride) * static_cast<double>(d);
+          kernel[d] = std::exp(-dist * dist / (2.0 * r2));
+        }
+        const auto k1 = [&](std::size_t i, std::size_t j) { return kernel[i > j ? i - j : j - i]; };
+        const float* p = &a.weight[a.first_entry[s]];
+        rows.assign(n * n, 0.0);
+        for (std::size_t v = 0; v < n; ++v) {
+          for (std::size_t u = 0; u < n; ++u) {
+            double sum = 0.0;
+            for (std::size_t u2 = 0; u2 < n; ++u2) sum += static_cast<double>(p[v * n + u2]) * k1(u, u2);
+            rows[v * n + u] = sum;
+          }
+        }
+        float* out = &blurred[a.first_entry[s]];
+        for (std::size_t v = 0; v < n; ++v) {
+          for (std::size_t u = 0; u < n; ++u) {
+            double sum = 0.0;
+            for (std::size_t v2 = 0; v2 < n; ++v2) sum += rows[v2 * n + u] * k1(v, v2);
+            out[v * n + u] = static_cast<float>(sum);
+          }
+        }
+      }
+    });
+  }
+
+  const double inv_two_nc_var =
+      1.0 / (2.0 * options.no_convergence_sigma * options.no_convergence_sigma);
+  std::vector<float> constrained(a.EntryCount());
+  ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+    struct Link {
+      double strength;
+      DisplacementMoments m;
+      const float* same_lattice_blurred;  // B_y when y's window lattice is the cell's, else null
+    };
+    std::array<Link, kNeighbourCount> links;
+    for (std::size_t s = begin; s < end; ++s) {
+      const SearchWindow& w = a.window[s];
+      const std::size_t first = a.first_entry[s];
+      const double o_j = static_cast<double>(a.occupancy[s]);
+      std::size_t link_count = 0;
+      if (options.enable_rigidity_constraint) {
+        for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+          const double strength =
+              std::min(1.0, options.rigidity_link_gain *
+                                static_cast<double>(a.rigidity[s * kNeighbourCount + d]));
+          if (strength <= 0.0) continue;
+          const int nx = a.source_local[s].ix + kNeighbourOffsets[d].ix;
+          const int ny = a.source_local[s].iy + kNeighbourOffsets[d].iy;
+          if (!indexer.Inside(nx, ny)) continue;
+          const std::uint32_t y = workspace.source_of_cell[indexer.Storage(nx, ny)];
+          if (y == FilterWorkspace::kNone) continue;
+          const SearchWindow& wy = a.window[y];
+          const bool same_lattice = wy.center == a.window[s].center &&
+                                    wy.stride == a.window[s].stride && wy.half == a.window[s].half;
+          links[link_count++] =
+              Link{strength, moments[y], same_lattice ? &blurred[a.first_entry[y]] : nullptr};
+        }
+      }
+      double sum = 0.0;
+      for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+        const std::size_t e = first + k;
+        double p = static_cast<double>(a.weight[e]);
+        if (options.enable_no_convergence_constraint && a.target[e] != kOutsideWindow) {
+          const double others = static_cast<double>(inflow_at_entry[e]) - p * o_j;
+          const double excess = std::max(0.0, others + o_j - 1.0);
+          p *= std::exp(-excess * excess * inv_two_nc_var);
+        }
+        if (link_count > 0) {
+          const CellIndex d = w.Displacement(k);
+          for (std::size_t l = 0; l < link_count; ++l) {
+            const Link& link = links[l];
+            double agree = 0.0;
+            if (link.same_lattice_blurred != nullptr) {
+              agree = static_cast<double>(link.same_lattice_blurred[k]);
+            } else {
+              const double var = r2 + link.m.variance_cells2;
+              const double ex = d.ix - link.m.mean_x_cells;
+              const double ey = d.iy - link.m.mean_y_cells;
+              agree = r2 / var * std::exp(-(ex * ex + ey * ey) / (2.0 * var));
+            }
+            p *= (1.0 - link.strength) + link.strength * agree;
+          }
+        }
+        constrained[e] = static_cast<float>(p);
+        sum += p;
+      }
+      if (sum <= 0.0) {  // every move forbidden (underflow): keep Pw
+        for (std::size_t k = 0; k < w.EntryCount(); ++k) constrained[first + k] = a.weight[first + k];
+        continue;
+      }
+      const double inv_sum = 1.0 / sum;
+      for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+        constrained[first + k] =
+            static_cast<float>(static_cast<double>(constrained[first + k]) * inv_sum);
+      }
+    }
+  });
+  a.weight.swap(constrained);
+}
+
+}  // namespace lookout::grid

@@ -1,0 +1,21 @@
+#pragma once
+
+// A slow literal reference of the extended grid's steps 2-7 (docs/extended-grid.md), for tests
+// only: the equations as they read, in double precision, scatter-based (each source pushes its
+// contributions into dense accumulators), no active-set bookkeeping, no target index, and the
+// literal O(M^6) rigidity term of eq. 11 (every move of every neighbour for every move of the
+// cell). It shares with the fast path only the window choice (SearchWindowFor: a design choice,
+// not an equation) and the options. Step 8 (classes) is not part of it.
+
+#include "lookout/grid/filter_options.h"
+#include "lookout/grid/filter_state.h"
+#include "lookout/grid/inverse_sensor_model.h"
+
+namespace lookout::grid {
+
+// Updates occupancy, seen, velocity, confidence and rigidity layers of `layers` (ids as
+// AddFilterLayers made them) with `z`, as ExtendedGrid::Update does before its class step.
+void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
+                     double dt_s, const FilterOptions& options);
+
+}  // namespace lookout::grid

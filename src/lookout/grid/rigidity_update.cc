@@ -1,0 +1,64 @@
+#include "lookout/grid/rigidity_update.h"
+
+namespace lookout::grid {
+
+std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndexer& indexer,
+                                        const FilterWorkspace& workspace) {
+  std::vector<float> links(a.SourceCount() * kNeighbourCount, 0.0f);
+  ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t x = begin; x < end; ++x) {
+      const SearchWindow& wx = a.window[x];
+      for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+        const int nx = a.source_local[x].ix + kNeighbourOffsets[d].ix;
+        const int ny = a.source_local[x].iy + kNeighbourOffsets[d].iy;
+        if (!indexer.Inside(nx, ny)) continue;
+        const std::uint32_t y = workspace.source_of_cell[indexer.Storage(nx, ny)];
+        if (y == FilterWorkspace::kNone) continue;
+        const SearchWindow& wy = a.window[y];
+        double overlap = 0.0;
+        for (std::size_t k = 0; k < wx.EntryCount(); ++k) {
+          const std::int64_t ky = wy.EntryOf(wx.Displacement(k));
+          if (ky < 0) continue;
+          overlap += static_cast<double>(a.weight[a.first_entry[x] + k]) *
+                     static_cast<double>(a.weight[a.first_entry[y] + static_cast<std::size_t>(ky)]);
+        }
+        links[x * kNeighbourCount + d] = static_cast<float>(overlap);
+      }
+    }
+  });
+  return links;
+}
+
+void UpdateRigidity(const Associations& a, const TargetIndex& targets,
+                    const std::vector<UpdateCell>& cells, const WindowIndexer& indexer,
+                    const FilterWorkspace& workspace,
+                    const std::array<std::span<float>, kNeighbourCount>& rigidity) {
+  const std::vector<float> links = ComputeRigidityLinks(a, indexer, workspace);
+  ParallelForBlocks(cells.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t u = begin; u < end; ++u) {
+      const UpdateCell& c = cells[u];
+      std::array<double, kNeighbourCount> carried{};
+      double sum = 0.0;
+      if (c.target_slot != FilterWorkspace::kNone) {
+        sum = GatherWeighted(a, targets, c.target_slot,
+                             [&](std::uint32_t, std::uint32_t s, double w) {
+                               for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+                                 carried[d] +=
+                                     w * static_cast<double>(links[s * kNeighbourCount + d]);
+                               }
+                             });
+      }
+      if (sum <= 0.0) {
+        if (c.source != FilterWorkspace::kNone) {
+          for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d][c.cell] = 0.0f;
+        }
+        continue;
+      }
+      for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+        rigidity[d][c.cell] = static_cast<float>(carried[d] / sum);
+      }
+    }
+  });
+}
+
+}  // namespace lookout::grid

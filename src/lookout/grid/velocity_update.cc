@@ -1,0 +1,56 @@
+#include "lookout/grid/velocity_update.h"
+
+#include <algorithm>
+
+namespace lookout::grid {
+
+void UpdateVelocity(const Associations& a, const TargetIndex& targets,
+                    const std::vector<UpdateCell>& cells, double dt_s, double cell_size_m,
+                    const FilterOptions& options, std::span<const float> seen,
+                    const VelocityLayers& out) {
+  const double alpha = options.velocity_blend;
+  const double cells_to_mps = cell_size_m / dt_s;
+  // Below this carried weight the cell received nothing worth an estimate.
+  constexpr double kMinWeight = 1e-6;
+  ParallelForBlocks(cells.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t u = begin; u < end; ++u) {
+      const UpdateCell& c = cells[u];
+      double sum = 0.0, dx = 0.0, dy = 0.0, d2 = 0.0, vx = 0.0, vy = 0.0, conf = 0.0;
+      if (c.target_slot != FilterWorkspace::kNone) {
+        sum = GatherWeighted(a, targets, c.target_slot,
+                             [&](std::uint32_t e, std::uint32_t s, double w) {
+                               const CellIndex d =
+                                   a.window[s].Displacement(e - a.first_entry[s]);
+                               dx += w * d.ix;
+                               dy += w * d.iy;
+                               d2 += w * (d.ix * d.ix + d.iy * d.iy);
+                               vx += w * static_cast<double>(a.velocity_x_mps[s]);
+                               vy += w * static_cast<double>(a.velocity_y_mps[s]);
+                               conf += w * static_cast<double>(a.confidence[s]);
+                             });
+      }
+      if (sum < kMinWeight) {
+        if (c.source != FilterWorkspace::kNone) {
+          out.velocity_x_mps[c.cell] = 0.0f;
+          out.velocity_y_mps[c.cell] = 0.0f;
+          out.confidence[c.cell] = 0.0f;
+        }
+        continue;
+      }
+      const double mean_x = dx / sum, mean_y = dy / sum;
+      const double spread = std::max(0.0, d2 / sum - mean_x * mean_x - mean_y * mean_y);
+      const double c_prev = conf / sum;
+      const double b = 1.0 - (1.0 - alpha) * c_prev;
+      const double new_vx = (1.0 - b) * vx / sum + b * mean_x * cells_to_mps;
+      const double new_vy = (1.0 - b) * vy / sum + b * mean_y * cells_to_mps;
+      const double c_obs = 1.0 / (1.0 + spread / options.confidence_spread_cells2);
+      const double new_conf =
+          static_cast<double>(seen[c.cell]) * ((1.0 - alpha) * c_prev + alpha * c_obs);
+      out.velocity_x_mps[c.cell] = static_cast<float>(new_vx);
+      out.velocity_y_mps[c.cell] = static_cast<float>(new_vy);
+      out.confidence[c.cell] = static_cast<float>(new_conf);
+    }
+  });
+}
+
+}  // namespace lookout::grid
