@@ -21,6 +21,7 @@
 
 #include <tbb/task_arena.h>
 
+#include "bench_scans.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/pose2.h"
 #include "lookout/grid/extended_grid.h"
@@ -36,83 +37,48 @@ using Eigen::Vector2d;
 constexpr double kDtS = 0.08;
 constexpr int kWarmupScans = 25;
 
-struct Box {
-  Vector2d lo;
-  Vector2d hi;
-};
 struct Mover {
-  Box box;  // at t = 0
+  Vector2d lo, hi;  // the box at t = 0
   Vector2d velocity_mps;
 };
 
-std::optional<double> RayBox(const Vector2d& o, const Vector2d& d, const Box& b) {
-  double t0 = 0.0;
-  double t1 = std::numeric_limits<double>::infinity();
-  for (int axis = 0; axis < 2; ++axis) {
-    if (d[axis] == 0.0) {
-      if (o[axis] < b.lo[axis] || o[axis] > b.hi[axis]) return std::nullopt;
-      continue;
-    }
-    double ta = (b.lo[axis] - o[axis]) / d[axis];
-    double tb = (b.hi[axis] - o[axis]) / d[axis];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1 || t0 <= 0.0) return std::nullopt;
-  return t0;
-}
-
-std::vector<Box> StaticBoxes() {
-  std::vector<Box> boxes;
+std::vector<sim::Shape> StaticBoxes() {
+  std::vector<sim::Shape> boxes;
   for (const double sx : {-1.0, 1.0}) {
     for (const double sy : {-1.0, 1.0}) {
       const Vector2d corner(10.0 * sx, 10.0 * sy);
       const Vector2d far(200.0 * sx, 200.0 * sy);
-      boxes.push_back({corner.cwiseMin(far), corner.cwiseMax(far)});
+      boxes.push_back(bench::AxisBox(corner.cwiseMin(far), corner.cwiseMax(far)));
       const Vector2d pole(10.8 * sx, 10.8 * sy);
-      boxes.push_back({pole - Vector2d(0.15, 0.15), pole + Vector2d(0.15, 0.15)});
+      boxes.push_back(bench::AxisBox(pole - Vector2d(0.15, 0.15), pole + Vector2d(0.15, 0.15)));
     }
   }
   for (int k = 0; k < 6; ++k) {
     const double x = -45.0 + 6.0 * k + (k >= 3 ? 58.0 : 0.0);
-    boxes.push_back({Vector2d(x, 6.0), Vector2d(x + 4.5, 7.8)});
+    boxes.push_back(bench::AxisBox(Vector2d(x, 6.0), Vector2d(x + 4.5, 7.8)));
   }
-  boxes.push_back({Vector2d(-8.0, 0.3), Vector2d(-3.5, 2.1)});
-  boxes.push_back({Vector2d(3.0, -9.5), Vector2d(4.8, -5.0)});
+  boxes.push_back(bench::AxisBox(Vector2d(-8.0, 0.3), Vector2d(-3.5, 2.1)));
+  boxes.push_back(bench::AxisBox(Vector2d(3.0, -9.5), Vector2d(4.8, -5.0)));
   return boxes;
 }
 
 std::vector<Mover> Movers() {
   return {
-      {{Vector2d(-14.0, -3.6), Vector2d(-9.5, -1.8)}, Vector2d(10.0, 0.0)},   // ahead of the ego
-      {{Vector2d(0.8, -26.0), Vector2d(2.6, -21.5)}, Vector2d(0.0, 15.0)},    // crossing
-      {{Vector2d(12.0, 2.3), Vector2d(16.5, 4.1)}, Vector2d(-12.0, 0.0)},     // oncoming
-      {{Vector2d(-6.0, 11.0), Vector2d(-5.5, 11.5)}, Vector2d(1.5, 0.0)},     // pedestrians
-      {{Vector2d(6.0, -11.5), Vector2d(6.5, -11.0)}, Vector2d(-1.5, 0.0)},
+      {Vector2d(-14.0, -3.6), Vector2d(-9.5, -1.8), Vector2d(10.0, 0.0)},   // ahead of the ego
+      {Vector2d(0.8, -26.0), Vector2d(2.6, -21.5), Vector2d(0.0, 15.0)},    // crossing
+      {Vector2d(12.0, 2.3), Vector2d(16.5, 4.1), Vector2d(-12.0, 0.0)},     // oncoming
+      {Vector2d(-6.0, 11.0), Vector2d(-5.5, 11.5), Vector2d(1.5, 0.0)},     // pedestrians
+      {Vector2d(6.0, -11.5), Vector2d(6.5, -11.0), Vector2d(-1.5, 0.0)},
   };
 }
 
 LidarScan ScanAt(int k, const Pose2& sensor_pose) {
-  LidarScan scan;
-  scan.mount = Pose2(2.2, 0.0, 0.0);
-  scan.angle_increment_rad = DegToRad(0.25);
-  scan.angle_min_rad = DegToRad(-80.0);
-  scan.max_range_m = 150.0;
-  std::vector<Box> boxes = StaticBoxes();
+  std::vector<sim::Shape> shapes = StaticBoxes();
   for (const Mover& m : Movers()) {
     const Vector2d shift = m.velocity_mps * (k * kDtS);
-    boxes.push_back({m.box.lo + shift, m.box.hi + shift});
+    shapes.push_back(bench::AxisBox(m.lo + shift, m.hi + shift));
   }
-  for (int i = 0; i < 641; ++i) {
-    const double a = sensor_pose.yaw + scan.BeamAngle(static_cast<std::size_t>(i));
-    const Vector2d d(std::cos(a), std::sin(a));
-    double best = std::numeric_limits<double>::infinity();
-    for (const Box& b : boxes) best = std::min(best, RayBox(sensor_pose.translation, d, b).value_or(best));
-    scan.ranges_m.push_back(best >= scan.max_range_m ? std::numeric_limits<float>::infinity()
-                                                     : static_cast<float>(best));
-  }
-  return scan;
+  return bench::CastDefaultScan(shapes, sensor_pose, Pose2(2.2, 0.0, 0.0));
 }
 
 // A warmed-up grid of `side` cells centred on the junction and the next measurement.

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench_scans.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/pose2.h"
 #include "lookout/grid/grid_options.h"
@@ -31,70 +32,27 @@ namespace {
 
 using Eigen::Vector2d;
 
-struct Box {
-  Vector2d lo;
-  Vector2d hi;
-};
-struct Circle {
-  Vector2d centre;
-  double radius_m;
-};
-
-// Distance along the unit ray o + t d to an axis-aligned box (slab method), if hit ahead.
-std::optional<double> RayBox(const Vector2d& o, const Vector2d& d, const Box& b) {
-  double t0 = 0.0;
-  double t1 = std::numeric_limits<double>::infinity();
-  for (int axis = 0; axis < 2; ++axis) {
-    if (d[axis] == 0.0) {
-      if (o[axis] < b.lo[axis] || o[axis] > b.hi[axis]) return std::nullopt;
-      continue;
-    }
-    double ta = (b.lo[axis] - o[axis]) / d[axis];
-    double tb = (b.hi[axis] - o[axis]) / d[axis];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1 || t0 <= 0.0) return std::nullopt;
-  return t0;
-}
-
-std::optional<double> RayCircle(const Vector2d& o, const Vector2d& d, const Circle& c) {
-  const Vector2d f = o - c.centre;
-  const double b = f.dot(d);
-  const double disc = b * b - (f.squaredNorm() - c.radius_m * c.radius_m);
-  if (disc < 0.0) return std::nullopt;
-  const double t = -b - std::sqrt(disc);
-  if (t <= 0.0) return std::nullopt;
-  return t;
-}
-
-struct Junction {
-  std::vector<Box> boxes;
-  std::vector<Circle> circles;
-};
-
 // A four-way junction centred on the origin: roads 20 m wide between building faces, cars
 // parked along the kerbs and queued at the stop lines, poles at the corners, pedestrians on
 // the sidewalks.
-Junction MakeJunction() {
-  Junction j;
+std::vector<sim::Shape> MakeJunction() {
+  std::vector<sim::Shape> j;
   for (const double sx : {-1.0, 1.0}) {
     for (const double sy : {-1.0, 1.0}) {
       const Vector2d corner(10.0 * sx, 10.0 * sy);
       const Vector2d far(200.0 * sx, 200.0 * sy);
-      j.boxes.push_back({corner.cwiseMin(far), corner.cwiseMax(far)});
-      j.circles.push_back({Vector2d(10.8 * sx, 10.8 * sy), 0.15});  // corner poles
-      j.circles.push_back({Vector2d(14.0 * sx, 8.5 * sy), 0.3});    // pedestrians
+      j.push_back(bench::AxisBox(corner.cwiseMin(far), corner.cwiseMax(far)));
+      j.push_back(sim::Shape::Circle(Vector2d(10.8 * sx, 10.8 * sy), 0.15, sim::kStaticOwner));
+      j.push_back(sim::Shape::Circle(Vector2d(14.0 * sx, 8.5 * sy), 0.3, sim::kStaticOwner));
     }
   }
   for (int k = 0; k < 6; ++k) {  // parked cars along the west and east arms, north kerb
     const double x = -45.0 + 6.0 * k + (k >= 3 ? 58.0 : 0.0);
-    j.boxes.push_back({Vector2d(x, 6.0), Vector2d(x + 4.5, 7.8)});
+    j.push_back(bench::AxisBox(Vector2d(x, 6.0), Vector2d(x + 4.5, 7.8)));
   }
-  j.boxes.push_back({Vector2d(-8.0, 0.3), Vector2d(-3.5, 2.1)});    // queued, oncoming lane
-  j.boxes.push_back({Vector2d(3.0, -9.5), Vector2d(4.8, -5.0)});    // waiting on the south arm
-  j.boxes.push_back({Vector2d(-2.1, 12.0), Vector2d(-0.3, 16.5)});  // on the north arm
+  j.push_back(bench::AxisBox(Vector2d(-8.0, 0.3), Vector2d(-3.5, 2.1)));    // queued, oncoming
+  j.push_back(bench::AxisBox(Vector2d(3.0, -9.5), Vector2d(4.8, -5.0)));    // on the south arm
+  j.push_back(bench::AxisBox(Vector2d(-2.1, 12.0), Vector2d(-0.3, 16.5)));  // on the north arm
   return j;
 }
 
@@ -112,23 +70,9 @@ BenchScene MakeScene() {
   s.ego_pose = Pose2(-20.0, -1.75, 0.0);
   s.scan.mount = Pose2(2.2, 0.0, 0.0);
   s.sensor_pose = s.ego_pose * s.scan.mount;
-  s.scan.angle_increment_rad = DegToRad(0.25);
-  s.scan.angle_min_rad = DegToRad(-80.0);
-  s.scan.max_range_m = 150.0;
-  const Junction j = MakeJunction();
-  for (int i = 0; i < 641; ++i) {
-    const double a = s.sensor_pose.yaw + s.scan.BeamAngle(static_cast<std::size_t>(i));
-    const Vector2d d(std::cos(a), std::sin(a));
-    double best = std::numeric_limits<double>::infinity();
-    for (const Box& b : j.boxes)
-      best = std::min(best, RayBox(s.sensor_pose.translation, d, b).value_or(best));
-    for (const Circle& c : j.circles) {
-      best = std::min(best, RayCircle(s.sensor_pose.translation, d, c).value_or(best));
-    }
-    const bool dropout = i % 211 == 100;
-    s.scan.ranges_m.push_back(dropout || best >= s.scan.max_range_m
-                                  ? std::numeric_limits<float>::infinity()
-                                  : static_cast<float>(best));
+  s.scan = bench::CastDefaultScan(MakeJunction(), s.sensor_pose, s.scan.mount);
+  for (std::size_t i = 100; i < s.scan.ranges_m.size(); i += 211) {
+    s.scan.ranges_m[i] = std::numeric_limits<float>::infinity();  // dropouts
   }
   return s;
 }
