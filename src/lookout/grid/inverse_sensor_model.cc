@@ -37,6 +37,28 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
   const auto p_free = static_cast<float>(options.p_free);
   const auto p_free_no_return = static_cast<float>(options.p_free_no_return);
 
+  // A beam without return between two neighbours that both returned from nearly the same
+  // place is a dropout in front of a surface, not a view into open space: its free space stops
+  // a cell short of the nearer neighbour's impact, so it cannot punch through the wall the
+  // neighbours see (over many scans such beams would wear streaks through buildings).
+  // "Nearly the same place": the neighbours' impacts less than this apart, laterally.
+  constexpr double kDropoutNeighbourGapM = 1.0;
+  auto returned = [&](std::size_t i) {
+    const auto r = static_cast<double>(scan.ranges_m[i]);
+    return r > 0.0 && r < max_range_m;  // false for NaN and +inf too
+  };
+  auto dropout_limit_m = [&](std::size_t beam) -> double {
+    if (beam == 0 || beam + 1 >= scan.ranges_m.size()) return no_return_length_m;
+    if (!returned(beam - 1) || !returned(beam + 1)) return no_return_length_m;
+    const auto r_before = static_cast<double>(scan.ranges_m[beam - 1]);
+    const auto r_after = static_cast<double>(scan.ranges_m[beam + 1]);
+    const double lateral_gap_m = std::max(r_before, r_after) * 2.0 * std::abs(scan.angle_increment_rad);
+    if (lateral_gap_m >= kDropoutNeighbourGapM || std::abs(r_before - r_after) >= kDropoutNeighbourGapM) {
+      return no_return_length_m;
+    }
+    return std::min(no_return_length_m, std::min(r_before, r_after) - geometry.cell_size_m());
+  };
+
   std::vector<float>& p = out.p_occupied;
   std::vector<std::size_t>& touched = out.touched;
   std::size_t visits = 0;
@@ -60,7 +82,7 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
     } else {
       ++out.stats.beyond_max_beams;
     }
-    const double length_m = hit ? range_m : no_return_length_m;
+    const double length_m = hit ? range_m : dropout_limit_m(beam);
     if (!(length_m > 0.0)) continue;
     const float p_crossed = hit ? p_free : p_free_no_return;
 

@@ -60,13 +60,25 @@ struct Beam {
 
 // The beam segments as the model defines them, written out independently.
 std::vector<Beam> Beams(const LidarScan& scan, const Pose2& pose,
-                        const InverseSensorModelOptions& o) {
+                        const InverseSensorModelOptions& o, double cell_size_m) {
   std::vector<Beam> beams;
-  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    const auto r = static_cast<double>(scan.ranges_m[i]);
+  const std::size_t n = scan.ranges_m.size();
+  auto range = [&](std::size_t i) { return static_cast<double>(scan.ranges_m[i]); };
+  auto returned = [&](std::size_t i) { return range(i) > 0.0 && range(i) < scan.max_range_m; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = range(i);
     if (std::isnan(r) || r <= 0.0) continue;
     const bool hit = r < scan.max_range_m;
-    const double length = hit ? r : std::min(o.no_return_free_range_m, scan.max_range_m);
+    double length = hit ? r : std::min(o.no_return_free_range_m, scan.max_range_m);
+    // A dropout between two neighbours that returned from within 1 m of each other (laterally
+    // and in range): free space ends a cell short of the nearer neighbour's impact.
+    if (!hit && i > 0 && i + 1 < n && returned(i - 1) && returned(i + 1)) {
+      const double near = std::min(range(i - 1), range(i + 1));
+      const double far = std::max(range(i - 1), range(i + 1));
+      if (far * 2.0 * std::abs(scan.angle_increment_rad) < 1.0 && far - near < 1.0) {
+        length = std::min(length, near - cell_size_m);
+      }
+    }
     if (length <= 0.0) continue;
     const double angle = pose.yaw + scan.BeamAngle(i);
     beams.push_back({pose.translation,
@@ -82,7 +94,7 @@ std::vector<int> ReferenceRanks(const LidarScan& scan, const Pose2& pose,
                                 const InverseSensorModelOptions& o) {
   constexpr double kStepM = 1e-3;
   std::vector<int> rank(g.CellCount(), 0);
-  for (const Beam& b : Beams(scan, pose, o)) {
+  for (const Beam& b : Beams(scan, pose, o, g.cell_size_m())) {
     const double length = (b.end_m - b.start_m).norm();
     const Vector2d dir = (b.end_m - b.start_m) / length;
     const int free_rank = b.hit ? 2 : 1;
@@ -163,7 +175,7 @@ TEST(InverseSensorModelTest, AgreesWithTheMarchingReferenceOnRandomScans) {
                                 std::move(ranges), /*max_range_m=*/15.0);
     const MeasurementGrid fast = ComputeInverseSensorModel(scan, pose, g, o);
     const std::vector<int> reference = ReferenceRanks(scan, pose, g, o);
-    const std::vector<Beam> beams = Beams(scan, pose, o);
+    const std::vector<Beam> beams = Beams(scan, pose, o, g.cell_size_m());
     for (std::size_t i = 0; i < g.CellCount(); ++i) {
       const int f = Rank(fast.p_occupied[i], o);
       if (f == reference[i]) continue;
@@ -320,6 +332,31 @@ TEST(InverseSensorModelTest, SpecialRangesFollowRep117) {
       ComputeInverseSensorModel(Scan(0.0, 0.1, {5.0f, 6.0f}), Pose2(std::nan(""), 0.0, 0.0), g, o);
   EXPECT_TRUE(lost.touched.empty());
   EXPECT_EQ(lost.stats.beams, 2);
+}
+
+TEST(InverseSensorModelTest, ADropoutInFrontOfAWallDoesNotSeeThroughIt) {
+  InverseSensorModelOptions o = Options();
+  o.no_return_free_range_m = 30.0;
+  const ScrollingGridGeometry g(GridOptions{});
+  const double increment = DegToRad(0.25);
+  // A wall at x = 10 straight ahead; beam 20 (along +x) drops out.
+  std::vector<float> ranges;
+  for (int i = 0; i <= 40; ++i) {
+    ranges.push_back(static_cast<float>(10.0 / std::cos((i - 20) * increment)));
+  }
+  ranges[20] = kInf;
+  const MeasurementGrid m = ComputeInverseSensorModel(Scan(-20 * increment, increment, ranges),
+                                                      Pose2(0.01, 0.01, 0.0), g, o);
+  auto at = [&](double x) { return m.p_occupied[*g.StorageIndexAt({x, 0.01})]; };
+  EXPECT_EQ(at(5.0), 0.3f);    // its neighbours' free space covers it
+  EXPECT_EQ(at(12.0), 0.5f);   // behind the wall: the dropout says nothing there
+  EXPECT_EQ(at(20.0), 0.5f);
+
+  // A no-return beam beside open space (one neighbour without return) keeps its weak free space.
+  ranges[21] = kInf;
+  const MeasurementGrid open = ComputeInverseSensorModel(Scan(-20 * increment, increment, ranges),
+                                                         Pose2(0.01, 0.01, 0.0), g, o);
+  EXPECT_EQ(open.p_occupied[*g.StorageIndexAt({20.0, 0.01})], 0.4f);
 }
 
 TEST(InverseSensorModelTest, HitsWinOverFreeWhateverTheBeamOrder) {
