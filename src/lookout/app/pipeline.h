@@ -21,8 +21,8 @@ struct PipelineOptions {
 
 class Pipeline {
  public:
-  Pipeline() = default;
-  explicit Pipeline(const PipelineOptions& options);
+  Pipeline() = default;  // no built-in stage: tests assemble their own with Add()
+  explicit Pipeline(const PipelineOptions& options);  // the built-in stages the options name
 
   // Any stage, run after the built-in ones (tests add probes this way).
   void Add(std::unique_ptr<Stage> stage) { stages_.push_back(std::move(stage)); }
