@@ -1,9 +1,11 @@
 #include "lookout/io/message_json.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <limits>
 
 #include "lookout/core/input_error.h"
+#include "lookout/io/base64.h"
 
 namespace lookout::io {
 namespace {
@@ -328,6 +330,31 @@ json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes) {
     entities.push_back(std::move(e));
   }
   return {{"deletions", json::array()}, {"entities", std::move(entities)}};
+}
+
+json GridToJson(TimeNs t, const std::string& frame_id, const GridGeometry& geometry,
+                const std::vector<GridLayer8>& layers) {
+  constexpr int kUint8 = 1;  // foxglove.NumericType
+  const auto cells = static_cast<std::size_t>(geometry.CellCount());
+  const std::size_t stride = layers.size();
+  std::vector<std::uint8_t> data(cells * stride);
+  json fields = json::array();
+  for (std::size_t f = 0; f < layers.size(); ++f) {
+    if (layers[f].values.size() != cells) {
+      throw std::invalid_argument("grid layer " + layers[f].name + " has the wrong size");
+    }
+    fields.push_back({{"name", layers[f].name}, {"offset", f}, {"type", kUint8}});
+    for (std::size_t c = 0; c < cells; ++c) data[c * stride + f] = layers[f].values[c];
+  }
+  return {{"timestamp", TimeToJson(t)},
+          {"frame_id", frame_id},
+          {"pose", Pose3FromPose2(Pose2(geometry.origin_m, 0.0))},
+          {"column_count", geometry.width},
+          {"cell_size", {{"x", geometry.cell_size_m}, {"y", geometry.cell_size_m}}},
+          {"row_stride", static_cast<std::size_t>(geometry.width) * stride},
+          {"cell_stride", stride},
+          {"fields", std::move(fields)},
+          {"data", Base64Encode(data)}};
 }
 
 }  // namespace lookout::io

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lookout/core/grid_geometry.h"
 #include "lookout/core/messages.h"
 #include "lookout/sim/shapes.h"
 #include "lookout/sim/truth.h"
@@ -39,5 +40,15 @@ nlohmann::json TruthSceneToJson(const sim::TruthFrame& frame);
 // foxglove.SceneUpdate drawing the static world: polygons as extruded outlines, circles as
 // cylinders. Sent once; the entities have no lifetime.
 nlohmann::json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes);
+
+// One byte per cell of a grid layer, in GridGeometry order (row 0 at the lowest y).
+struct GridLayer8 {
+  std::string name;
+  std::vector<std::uint8_t> values;
+};
+// foxglove.Grid of uint8 layers, interleaved cell by cell; `geometry.origin_m` is the lower-left
+// corner of cell (0, 0) in `frame_id`. Every layer must have geometry.CellCount() values.
+nlohmann::json GridToJson(TimeNs t, const std::string& frame_id, const GridGeometry& geometry,
+                          const std::vector<GridLayer8>& layers);
 
 }  // namespace lookout::io

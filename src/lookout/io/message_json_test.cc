@@ -81,6 +81,24 @@ TEST(MessageJsonTest, OdometryRoundTripsAndMalformedIsRefusedWithField) {
   }
 }
 
+TEST(MessageJsonTest, GridInterleavesUint8LayersRowByRowFromTheOrigin) {
+  const GridGeometry g{Eigen::Vector2d(-1.5, 2.0), 0.5, 2, 2};
+  const nlohmann::json j =
+      GridToJson(7, "odom", g, {{"occupancy", {0, 1, 2, 3}}, {"speed", {10, 11, 12, 13}}});
+  EXPECT_EQ(j["frame_id"], "odom");
+  EXPECT_EQ(j["column_count"], 2);
+  EXPECT_EQ(j["cell_stride"], 2);
+  EXPECT_EQ(j["row_stride"], 4);
+  EXPECT_DOUBLE_EQ(j["cell_size"]["x"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["pose"]["position"]["x"].get<double>(), -1.5);
+  EXPECT_EQ(j["fields"][1]["name"], "speed");
+  EXPECT_EQ(j["fields"][1]["offset"], 1);
+  EXPECT_EQ(j["fields"][1]["type"], 1);  // UINT8
+  // Bytes 00 0a 01 0b 02 0c 03 0d: cell by cell, each cell's layers together.
+  EXPECT_EQ(j["data"], "AAoBCwIMAw0=");
+  EXPECT_THROW(GridToJson(7, "odom", g, {{"short", {1, 2, 3}}}), std::invalid_argument);
+}
+
 TEST(MessageJsonTest, EncodingIsDeterministic) {
   const EgoOdometry o{1, 0.1, 0.2};
   EXPECT_EQ(EgoOdometryToJson(o).dump(), EgoOdometryToJson(o).dump());

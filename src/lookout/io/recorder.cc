@@ -30,6 +30,7 @@ Recorder::Recorder(const std::string& path, McapWriterOptions options)
   truth_actors_ = AddJsonChannel(writer_, topics::kTruthActors, LookoutTruthFrameSchema());
   truth_scene_ = writer_.AddChannel(scene_id, topics::kTruthScene, "json");
   world_ = writer_.AddChannel(scene_id, topics::kWorldStatic, "json");
+  grid_ = AddJsonChannel(writer_, topics::kGridBelief, FoxgloveGridSchema());
 }
 
 void Recorder::Emit(std::uint16_t channel, const char* topic, TimeNs t,
@@ -69,6 +70,15 @@ void Recorder::Write(const sim::TruthFrame& truth) {
        PoseInFrameToJson(truth.stamp, frames::kWorld, ego));
   Emit(tf_, topics::kTransforms, truth.stamp,
        FrameTransformToJson(truth.stamp, frames::kWorld, frames::kVehicle, ego));
+}
+
+void Recorder::WriteTransform(TimeNs t, const char* parent, const char* child, const Pose2& pose) {
+  Emit(tf_, topics::kTransforms, t, FrameTransformToJson(t, parent, child, pose));
+}
+
+void Recorder::WriteGrid(TimeNs t, const GridGeometry& geometry,
+                         const std::vector<GridLayer8>& layers) {
+  Emit(grid_, topics::kGridBelief, t, GridToJson(t, frames::kOdom, geometry, layers));
 }
 
 }  // namespace lookout::io

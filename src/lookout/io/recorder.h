@@ -12,6 +12,7 @@
 
 #include "lookout/core/messages.h"
 #include "lookout/io/mcap_writer.h"
+#include "lookout/io/message_json.h"
 #include "lookout/sim/shapes.h"
 #include "lookout/sim/truth.h"
 
@@ -27,6 +28,7 @@ inline constexpr const char* kTruthEgo = "/truth/ego";
 inline constexpr const char* kTruthActors = "/truth/actors";
 inline constexpr const char* kTruthScene = "/truth/scene";
 inline constexpr const char* kWorldStatic = "/world/static";
+inline constexpr const char* kGridBelief = "/grid/belief";
 }  // namespace topics
 
 // Frame names (docs/conventions.md).
@@ -35,6 +37,7 @@ inline constexpr const char* kWorld = "world";
 inline constexpr const char* kVehicle = "base_link";
 inline constexpr const char* kLidar = "lidar";
 inline constexpr const char* kStereo = "stereo";
+inline constexpr const char* kOdom = "odom";
 }  // namespace frames
 
 class Recorder {
@@ -51,6 +54,10 @@ class Recorder {
   void Write(const EgoOdometry& odometry);
   // Truth: the actors, their scene drawing, the ego pose and the world -> base_link transform.
   void Write(const sim::TruthFrame& truth);
+  // A transform on /tf: `child` in `parent`.
+  void WriteTransform(TimeNs t, const char* parent, const char* child, const Pose2& pose);
+  // The grid's belief as a foxglove.Grid in the odometry frame.
+  void WriteGrid(TimeNs t, const GridGeometry& geometry, const std::vector<GridLayer8>& layers);
 
   // Messages written per topic so far.
   const std::map<std::string, std::uint64_t>& message_counts() const { return counts_; }
@@ -63,7 +70,7 @@ class Recorder {
   McapWriter writer_;
   std::map<std::string, std::uint64_t> counts_;
   std::uint16_t lidar_ = 0, stereo_ = 0, odometry_ = 0, tf_ = 0, truth_ego_ = 0,
-                truth_actors_ = 0, truth_scene_ = 0, world_ = 0;
+                truth_actors_ = 0, truth_scene_ = 0, world_ = 0, grid_ = 0;
 };
 
 }  // namespace lookout::io
