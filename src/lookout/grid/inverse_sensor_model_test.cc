@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "lookout/grid/testing/segment_in_cell.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -111,28 +113,7 @@ std::vector<int> ReferenceRanks(const LidarScan& scan, const Pose2& pose,
   return rank;
 }
 
-// Length (m) of segment [a, b] inside the closed box of cell c, or nullopt if they miss.
-std::optional<double> LengthInCell(const ScrollingGridGeometry& g, const CellIndex& c,
-                                   const Vector2d& a, const Vector2d& b) {
-  const Vector2d lo = g.CellLowerLeftM(c);
-  const Vector2d hi = lo + Vector2d::Constant(g.cell_size_m());
-  const Vector2d d = b - a;
-  double t0 = 0.0;
-  double t1 = 1.0;
-  for (int axis = 0; axis < 2; ++axis) {
-    if (d[axis] == 0.0) {
-      if (a[axis] < lo[axis] || a[axis] > hi[axis]) return std::nullopt;
-      continue;
-    }
-    double ta = (lo[axis] - a[axis]) / d[axis];
-    double tb = (hi[axis] - a[axis]) / d[axis];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1 + 1e-12) return std::nullopt;
-  return std::max(0.0, t1 - t0) * d.norm();
-}
+using testing::LengthInCell;
 
 void ExpectTouchedIsTheSupport(const MeasurementGrid& m) {
   std::set<std::size_t> support;

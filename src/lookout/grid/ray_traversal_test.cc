@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "lookout/grid/testing/segment_in_cell.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -28,29 +30,7 @@ std::vector<Visit> Traverse(const ScrollingGridGeometry& g, const Vector2d& a, c
   return visits;
 }
 
-// Length (m) of the part of segment [a, b] inside the closed box of a cell (Liang-Barsky), or
-// nullopt when they do not meet.
-std::optional<double> LengthInCell(const ScrollingGridGeometry& g, const CellIndex& c,
-                                   const Vector2d& a, const Vector2d& b) {
-  const Vector2d lo = g.CellLowerLeftM(c);
-  const Vector2d hi = lo + Vector2d::Constant(g.cell_size_m());
-  const Vector2d d = b - a;
-  double t0 = 0.0;
-  double t1 = 1.0;
-  for (int axis = 0; axis < 2; ++axis) {
-    if (d[axis] == 0.0) {
-      if (a[axis] < lo[axis] || a[axis] > hi[axis]) return std::nullopt;
-      continue;
-    }
-    double ta = (lo[axis] - a[axis]) / d[axis];
-    double tb = (hi[axis] - a[axis]) / d[axis];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1 + 1e-12) return std::nullopt;
-  return std::max(0.0, t1 - t0) * d.norm();
-}
+using testing::LengthInCell;
 
 // Checks one segment against the exact answer: every window cell the segment crosses along a
 // positive length is visited; every visited cell at least touches the segment; the walk is
