@@ -95,7 +95,9 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
     for (std::size_t d = 0; d < kNeighbourCount; ++d) {
       a.rigidity[s * kNeighbourCount + d] = rigidity_layers[d][cell];
     }
-    a.window[s] = SearchWindowFor(vx[cell], vy[cell], seen[cell], confidence[cell],
+    a.window[s] = SearchWindowFor(static_cast<double>(vx[cell]), static_cast<double>(vy[cell]),
+                                  static_cast<double>(seen[cell]),
+                                  static_cast<double>(confidence[cell]),
                                   &a.class_pmf[s * kGridClassCount], dt_s, cell_size_m, options);
     a.first_entry[s + 1] = a.first_entry[s] + a.window[s].EntryCount();
   }
