@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lookout/core/pose2.h"
+#include "lookout/io/scenario_loader.h"
 #include "lookout/sim/lidar_sensor.h"
 #include "lookout/sim/raycast.h"
 #include "lookout/sim/scenario.h"
@@ -94,18 +95,10 @@ ActorSpec Actor(std::string id, ObjectClass c, std::vector<Vector2d> path, doubl
   return a;
 }
 
-// scenarios/left-turn-across-path.yaml (the built-in default), written out here so the
-// benchmark needs only the sim module; `extra_actors` adds traffic through the junction.
+// The built-in default scenario (scenarios/left-turn-across-path.yaml); `extra_actors` adds
+// traffic through the junction.
 Scenario DefaultLikeScenario(int extra_actors) {
-  Scenario s;
-  s.name = "left-turn-across-path";
-  s.duration_s = 12.0;
-  s.seed = 7;
-  s.world.preset = "four_way";
-  s.ego.path = {{-60, -1.75}, {60, -1.75}};
-  s.ego.speed = SpeedProfile::Constant(11.1);
-  s.actors.push_back(Actor("car1", ObjectClass::kCar,
-                           {{45, 1.75}, {5, 1.75}, {-1.75, -5}, {-1.75, -60}}, 8.0, 12.0));
+  Scenario s = io::LoadDefaultScenario();
   for (int i = 0; i < extra_actors; ++i) {
     const Pose2 arm(0.0, 0.0, 0.5 * kPi * (i % 4));
     const double back = 15.0 + 8.0 * (i / 4);
