@@ -45,8 +45,10 @@ case "$case_name" in
     "$lookout" run --threads 0 --out "$work/out" 2>"$work/stderr"; code1=$?
     "$lookout" run --no-such-flag 2>/dev/null; code2=$?
     "$lookout" run "$work/missing.yaml" 2>"$work/stderr3"; code3=$?
+    "$lookout" run --snapshot 99 --out "$work/out" 2>/dev/null; code4=$?
     set -e
-    [[ $code1 == 2 && $code2 == 2 && $code3 == 2 ]] || fail "exit codes $code1 $code2 $code3"
+    [[ $code1 == 2 && $code2 == 2 && $code3 == 2 && $code4 == 2 ]] ||
+      fail "exit codes $code1 $code2 $code3 $code4"
     grep -q "missing.yaml" "$work/stderr3" || fail "missing file not named"
     [[ ! -e "$work/out" ]] || fail "output written for a bad option"
     ;;

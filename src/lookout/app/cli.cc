@@ -79,16 +79,17 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
   ValidateThreads(threads);
   const sim::Scenario scenario =
       scenario_path.empty() ? io::LoadDefaultScenario() : io::LoadScenarioFile(scenario_path);
-  if (out_dir.empty()) out_dir = (std::filesystem::path("lookout-out") / scenario.name).string();
-  EnsureOutputDirectory(out_dir, "--out");
-  const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
-  const std::string metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
-
+  // Every input is checked before anything is written.
   if (snapshot_s && (!std::isfinite(*snapshot_s) || *snapshot_s < 0.0 ||
                      *snapshot_s > scenario.duration_s)) {
     throw InputError("--snapshot", 0, "snapshot",
                      fmt::format("must be a time within the scenario, 0 to {} s", scenario.duration_s));
   }
+  if (out_dir.empty()) out_dir = (std::filesystem::path("lookout-out") / scenario.name).string();
+  EnsureOutputDirectory(out_dir, "--out");
+  const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
+  const std::string metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
+
   Pipeline pipeline(PipelineOptions{});
   RunOptions options;
   options.threads = threads;
