@@ -131,8 +131,7 @@ void BM_ExtendedGridUpdate(benchmark::State& state) {
 BENCHMARK(BM_ExtendedGridUpdate)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The literal reference on the same 400 x 400 input, side by side with BM_ExtendedGridUpdate.
-void BM_ReferenceUpdate(benchmark::State& state) {
-  static const WarmGrid warm = Warm(400);
+void MeasureReferenceUpdate(benchmark::State& state, const WarmGrid& warm) {
   GridLayers layers = warm.grid.layers();
   for (auto _ : state) {
     state.PauseTiming();
@@ -143,6 +142,11 @@ void BM_ReferenceUpdate(benchmark::State& state) {
   ExtendedGrid after = warm.grid;
   after.Update(warm.next, kDtS);
   Counters(state, after);
+}
+
+void BM_ReferenceUpdate(benchmark::State& state) {
+  static const WarmGrid warm = Warm(400);
+  MeasureReferenceUpdate(state, warm);
 }
 BENCHMARK(BM_ReferenceUpdate)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
@@ -165,16 +169,7 @@ BENCHMARK(BM_ExtendedGridUpdateSmall)->Unit(benchmark::kMillisecond)->UseRealTim
 
 void BM_ReferenceUpdateSmall(benchmark::State& state) {
   static const WarmGrid warm = Warm(kSmallSide);
-  GridLayers layers = warm.grid.layers();
-  for (auto _ : state) {
-    state.PauseTiming();
-    layers = warm.grid.layers();
-    state.ResumeTiming();
-    ReferenceUpdate(layers, warm.grid.ids(), warm.next, kDtS, warm.grid.options());
-  }
-  ExtendedGrid after = warm.grid;
-  after.Update(warm.next, kDtS);
-  Counters(state, after);
+  MeasureReferenceUpdate(state, warm);
 }
 BENCHMARK(BM_ReferenceUpdateSmall)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 

@@ -78,8 +78,7 @@ BenchScene MakeScene() {
 }
 
 // Steady state: one MeasurementGrid reused scan after scan (the pipeline's way).
-void BM_InverseSensorModel(benchmark::State& state) {
-  const BenchScene scene = MakeScene();
+void MeasureInverseSensorModel(benchmark::State& state, const BenchScene& scene) {
   const GridOptions options;
   const ScrollingGridGeometry geometry(options, scene.ego_pose.translation);
   MeasurementGrid out;
@@ -96,6 +95,8 @@ void BM_InverseSensorModel(benchmark::State& state) {
   state.counters["hit_beams"] = out.stats.hit_beams;
   state.SetLabel("items = beams");
 }
+
+void BM_InverseSensorModel(benchmark::State& state) { MeasureInverseSensorModel(state, MakeScene()); }
 BENCHMARK(BM_InverseSensorModel)->Unit(benchmark::kMicrosecond);
 
 // The pure function: allocates and fills the 160,000-cell grid each call.
@@ -158,22 +159,7 @@ BenchScene SimulatedScene() {
 }
 
 void BM_InverseSensorModelSimulated(benchmark::State& state) {
-  const BenchScene scene = SimulatedScene();
-  const GridOptions options;
-  const ScrollingGridGeometry geometry(options, scene.ego_pose.translation);
-  MeasurementGrid out;
-  for (auto _ : state) {
-    ComputeInverseSensorModel(scene.scan, scene.sensor_pose, geometry, options.inverse_sensor_model,
-                              out);
-    benchmark::DoNotOptimize(out.p_occupied.data());
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(state.iterations() *
-                          static_cast<std::int64_t>(scene.scan.ranges_m.size()));
-  state.counters["cell_visits"] = static_cast<double>(out.stats.cell_visits);
-  state.counters["touched_cells"] = static_cast<double>(out.touched.size());
-  state.counters["hit_beams"] = out.stats.hit_beams;
-  state.SetLabel("items = beams");
+  MeasureInverseSensorModel(state, SimulatedScene());
 }
 BENCHMARK(BM_InverseSensorModelSimulated)->Unit(benchmark::kMicrosecond);
 
