@@ -6,6 +6,7 @@
 // mount pose in the vehicle frame.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -55,6 +56,41 @@ struct StereoFrame {
   TimeNs stamp = 0;
   Pose2 mount;  // camera frame in the vehicle frame
   std::vector<StereoObject> objects;
+};
+
+// An object found in one lidar scan (seed 004 section IV.D): by the extended grid's rigid
+// clusters or by the lidar chain's scan segmentation. Positions are in the vehicle frame at
+// the scan's stamp; velocities are over the ground (the odometry frame's motion removed) but
+// expressed in vehicle-frame axes, so that fusion and tracking need only the frame's ego pose.
+struct LidarObject {
+  std::uint32_t id = 0;  // unique within its frame only
+  // The middle of the front line segment: what the laser sees best (seed 004 IV.D), the
+  // object's point for fusion.
+  Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d point_covariance = Eigen::Matrix2d::Identity();  // m^2
+  Eigen::Vector2d front_start_m = Eigen::Vector2d::Zero();  // the front segment's ends
+  Eigen::Vector2d front_end_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d centroid_m = Eigen::Vector2d::Zero();
+  double range_m = 0.0;      // of the centroid, from the lidar's origin
+  double bearing_rad = 0.0;  // of the centroid, in the lidar frame
+  // Extent: the smallest rectangle about the object's points, its length along yaw_rad.
+  double yaw_rad = 0.0;
+  double length_m = 0.0;
+  double width_m = 0.0;
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Identity();  // (m/s)^2
+  // Probability of each class, indexed by ObjectClass (kAllObjectClasses order); sums to 1.
+  std::array<double, kAllObjectClasses.size()> class_pmf{};
+  std::uint32_t cell_count = 0;   // grid cells in the cluster (0 from scan segmentation)
+  std::uint32_t point_count = 0;  // scan points on the object
+  bool dynamic = false;           // moving over the ground
+};
+
+struct LidarObjectFrame {
+  TimeNs stamp = 0;
+  Pose2 mount;     // lidar frame in the vehicle frame
+  Pose2 ego_pose;  // vehicle frame in the odometry frame at `stamp`
+  std::vector<LidarObject> objects;
 };
 
 // Wheel odometry and yaw-rate sensor of the ego vehicle.
