@@ -27,6 +27,8 @@ void InverseSensorModelOptions::Validate(const std::string& source,
           "must be in [p_free, 0.5): a beam without return is weaker evidence than one with");
   Require(std::isfinite(no_return_free_range_m) && no_return_free_range_m >= 0.0, source,
           prefix + ".no_return_free_range_m", "must be finite and >= 0");
+  Require(std::isfinite(surface_gap_m) && surface_gap_m >= 0.0, source,
+          prefix + ".surface_gap_m", "must be finite and >= 0");
 }
 
 void GridOptions::Validate(const std::string& source) const {

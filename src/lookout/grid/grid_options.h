@@ -20,6 +20,15 @@ struct InverseSensorModelOptions {
   // 0 to ignore no-return beams altogether.
   double p_free_no_return = 0.4;
   double no_return_free_range_m = 30.0;
+  // Two consecutive beams whose impacts lie at most this far apart hit one surface: the cells
+  // along the segment between the impacts are hits too. Why: a wall seen at a grazing angle is
+  // hit only where the beams land, and those points slide along the wall at the ego's speed
+  // as it drives (at bearing theta the impact on a wall parallel to the motion sits at
+  // x_ego + d / tan(theta)); without the segment the filter tracks that sliding pattern and
+  // calls the wall dynamic. The price: a gap narrower than this between two objects at the
+  // same depth is filled. The same distance decides when a beam without return lies in front
+  // of one surface (a dropout, see inverse_sensor_model.h). 0 turns the segments off.
+  double surface_gap_m = 1.0;
 
   // Throws lookout::InputError naming the first field out of range; `prefix` is the field path
   // of this struct ("grid.inverse_sensor_model").

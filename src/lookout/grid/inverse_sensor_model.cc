@@ -41,8 +41,8 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
   // place is a dropout in front of a surface, not a view into open space: its free space stops
   // a cell short of the nearer neighbour's impact, so it cannot punch through the wall the
   // neighbours see (over many scans such beams would wear streaks through buildings).
-  // "Nearly the same place": the neighbours' impacts less than this apart, laterally.
-  constexpr double kDropoutNeighbourGapM = 1.0;
+  // "Nearly the same place": the neighbours' impacts less than surface_gap_m apart.
+  const double surface_gap_m = options.surface_gap_m;
   auto returned = [&](std::size_t i) {
     const auto r = static_cast<double>(scan.ranges_m[i]);
     return r > 0.0 && r < max_range_m;  // false for NaN and +inf too
@@ -53,7 +53,7 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
     const auto r_before = static_cast<double>(scan.ranges_m[beam - 1]);
     const auto r_after = static_cast<double>(scan.ranges_m[beam + 1]);
     const double lateral_gap_m = std::max(r_before, r_after) * 2.0 * std::abs(scan.angle_increment_rad);
-    if (lateral_gap_m >= kDropoutNeighbourGapM || std::abs(r_before - r_after) >= kDropoutNeighbourGapM) {
+    if (lateral_gap_m >= surface_gap_m || std::abs(r_before - r_after) >= surface_gap_m) {
       return no_return_length_m;
     }
     return std::min(no_return_length_m, std::min(r_before, r_after) - geometry.cell_size_m());
@@ -99,6 +99,27 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
         value = std::min(value, p_crossed);  // the stronger free evidence; never over a hit
       }
     });
+  }
+
+  // Surfaces between consecutive returns (after every beam: a hit wins wherever it lands).
+  if (surface_gap_m > 0.0) {
+    auto impact = [&](std::size_t beam) {
+      const double angle_rad = sensor_pose.yaw + scan.BeamAngle(beam);
+      return Eigen::Vector2d(origin_m + static_cast<double>(scan.ranges_m[beam]) *
+                                            Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));
+    };
+    for (std::size_t beam = 0; beam + 1 < scan.ranges_m.size(); ++beam) {
+      if (!returned(beam) || !returned(beam + 1)) continue;
+      const Eigen::Vector2d a = impact(beam);
+      const Eigen::Vector2d b = impact(beam + 1);
+      if ((b - a).norm() > surface_gap_m) continue;
+      ++out.stats.surface_segments;
+      TraverseSegment(geometry, a, b, [&](std::size_t i, bool /*is_end*/) {
+        ++visits;
+        if (p[i] == kUnknownProbability) touched.push_back(i);
+        p[i] = p_hit;
+      });
+    }
   }
   out.stats.cell_visits = visits;
 }

@@ -10,7 +10,10 @@
 //   - no return (+inf, or r >= max range: clamped to no return): the cells crossed up to
 //     no_return_free_range_m get the weaker p_free_no_return, no hit (see
 //     InverseSensorModelOptions for why weaker);
-//   - NaN (an erroneous reading) and r <= 0 (no lidar measures zero): skipped and counted.
+//   - NaN (an erroneous reading) and r <= 0 (no lidar measures zero): skipped and counted;
+//   - two consecutive returns whose impacts lie within surface_gap_m of each other are one
+//     surface: the cells along the segment joining them are hits as well (see
+//     InverseSensorModelOptions::surface_gap_m for why).
 // Cells no beam reaches (outside the field of view, behind impacts, beyond the ranges above)
 // stay 0.5: no evidence, so the filter's prediction passes there unchanged (step 3).
 //
@@ -22,10 +25,10 @@
 // the same space in the same instant, and fusing them would make the cells nearest the sensor
 // near-certain within one scan.
 //
-// Beams only, no filling between them. Adjacent beams diverge by r * angle_increment; beyond
+// Free space from beams only, no filling between them. Adjacent beams diverge by r * angle_increment; beyond
 // r = cell_size / angle_increment (34 m at 0.25 deg and 0.15 m) they are farther apart than a
-// cell, so some cells between beams get no evidence (0.5) and a far surface's hit cells have
-// gaps. With the default 60 m window centred on the ego, only its corners are that far from
+// cell, so some cells between beams get no evidence (0.5) and a far surface's hit cells would
+// have gaps, which the surface segments close (up to surface_gap_m). With the default 60 m window centred on the ego, only its corners are that far from
 // the lidar. Consequence: there the grid learns free space more slowly (a 0.5 cell keeps its
 // prediction, it is never wrongly cleared) and a far surface is sampled sparsely in one scan,
 // filled in across scans as the ego moves. Filling the wedge between two beams instead would
@@ -57,6 +60,7 @@ struct InverseSensorModelStats {
   int beyond_max_beams = 0;     // finite, >= max range: treated as no return
   int nan_beams = 0;            // skipped
   int non_positive_beams = 0;   // r <= 0 or -inf: skipped
+  int surface_segments = 0;     // consecutive returns joined as one surface
   std::size_t cell_visits = 0;  // cells visited by the traversal, repeats included (cost)
 };
 

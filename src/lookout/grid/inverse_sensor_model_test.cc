@@ -72,12 +72,13 @@ std::vector<Beam> Beams(const LidarScan& scan, const Pose2& pose,
     if (std::isnan(r) || r <= 0.0) continue;
     const bool hit = r < scan.max_range_m;
     double length = hit ? r : std::min(o.no_return_free_range_m, scan.max_range_m);
-    // A dropout between two neighbours that returned from within 1 m of each other (laterally
-    // and in range): free space ends a cell short of the nearer neighbour's impact.
+    // A dropout between two neighbours that returned from within surface_gap_m of each other
+    // (laterally and in range): free space ends a cell short of the nearer neighbour's impact.
     if (!hit && i > 0 && i + 1 < n && returned(i - 1) && returned(i + 1)) {
       const double near = std::min(range(i - 1), range(i + 1));
       const double far = std::max(range(i - 1), range(i + 1));
-      if (far * 2.0 * std::abs(scan.angle_increment_rad) < 1.0 && far - near < 1.0) {
+      if (far * 2.0 * std::abs(scan.angle_increment_rad) < o.surface_gap_m &&
+          far - near < o.surface_gap_m) {
         length = std::min(length, near - cell_size_m);
       }
     }
@@ -87,6 +88,23 @@ std::vector<Beam> Beams(const LidarScan& scan, const Pose2& pose,
                      pose.translation + length * Vector2d(std::cos(angle), std::sin(angle)), hit});
   }
   return beams;
+}
+
+// The surface segments: the impacts of consecutive returns at most surface_gap_m apart.
+std::vector<Beam> Surfaces(const LidarScan& scan, const Pose2& pose,
+                           const InverseSensorModelOptions& o) {
+  std::vector<Beam> surfaces;
+  auto impact = [&](std::size_t i) -> std::optional<Vector2d> {
+    const auto r = static_cast<double>(scan.ranges_m[i]);
+    if (!(r > 0.0 && r < scan.max_range_m)) return std::nullopt;
+    const double angle = pose.yaw + scan.BeamAngle(i);
+    return pose.translation + r * Vector2d(std::cos(angle), std::sin(angle));
+  };
+  for (std::size_t i = 0; i + 1 < scan.ranges_m.size(); ++i) {
+    const auto a = impact(i), b = impact(i + 1);
+    if (a && b && (*b - *a).norm() <= o.surface_gap_m) surfaces.push_back({*a, *b, true});
+  }
+  return surfaces;
 }
 
 // The slow literal reference: march along each beam in 1 mm steps, classify the cell under
@@ -108,6 +126,15 @@ std::vector<int> ReferenceRanks(const LidarScan& scan, const Pose2& pose,
     }
     if (b.hit) {
       if (const auto i = g.StorageIndexAt(b.end_m)) rank[*i] = 3;
+    }
+  }
+  for (const Beam& surface : Surfaces(scan, pose, o)) {
+    const double length = (surface.end_m - surface.start_m).norm();
+    for (long k = 0;; ++k) {
+      const double t = std::min(length, static_cast<double>(k) * kStepM);
+      const Vector2d p = length > 0.0 ? Vector2d(surface.start_m + t / length * (surface.end_m - surface.start_m)) : surface.start_m;
+      if (const auto i = g.StorageIndexAt(p)) rank[*i] = 3;
+      if (t >= length) break;
     }
   }
   return rank;
@@ -156,7 +183,8 @@ TEST(InverseSensorModelTest, AgreesWithTheMarchingReferenceOnRandomScans) {
                                 std::move(ranges), /*max_range_m=*/15.0);
     const MeasurementGrid fast = ComputeInverseSensorModel(scan, pose, g, o);
     const std::vector<int> reference = ReferenceRanks(scan, pose, g, o);
-    const std::vector<Beam> beams = Beams(scan, pose, o, g.cell_size_m());
+    std::vector<Beam> beams = Beams(scan, pose, o, g.cell_size_m());
+    for (const Beam& surface : Surfaces(scan, pose, o)) beams.push_back(surface);
     for (std::size_t i = 0; i < g.CellCount(); ++i) {
       const int f = Rank(fast.p_occupied[i], o);
       if (f == reference[i]) continue;
@@ -221,6 +249,58 @@ TEST(InverseSensorModelTest, WallAtKnownDistance) {
   }
   EXPECT_GT(free_cells, 2000);  // the wedge's area over the cell area: about 2560
   ExpectTouchedIsTheSupport(m);
+}
+
+// A wall parallel to the sensor's heading, 4.275 m to its right (mid-cell), seen from 10 to 80 degrees off
+// the axis: beyond a few metres its impacts are farther apart than a cell, and as the sensor
+// moves they slide along it. Joined as one surface, every cell the wall passes through between
+// the first and the last impact is a hit; without the segments, some are not.
+TEST(InverseSensorModelTest, ConsecutiveReturnsFromOneSurfaceAreJoined) {
+  const ScrollingGridGeometry g(GridOptions{});
+  constexpr double kWallM = 4.275;
+  const double increment = DegToRad(0.25);
+  const double first = DegToRad(-80.0);
+  std::vector<float> ranges;
+  for (int i = 0; i <= 280; ++i) {
+    ranges.push_back(static_cast<float>(kWallM / std::sin(-(first + i * increment))));
+  }
+  const LidarScan scan = Scan(first, increment, ranges);
+  auto hits_along_wall = [&](double surface_gap_m) {
+    InverseSensorModelOptions o = Options();
+    o.surface_gap_m = surface_gap_m;
+    const MeasurementGrid m = ComputeInverseSensorModel(scan, Pose2(0.0, 0.0, 0.0), g, o);
+    ExpectTouchedIsTheSupport(m);
+    int hits = 0, cells = 0;
+    // Sample the wall every 1 cm between the first and the last impact (x = 0.75 .. 24.2 m).
+    for (double x = kWallM / std::tan(DegToRad(80.0)); x <= kWallM / std::tan(DegToRad(10.0));
+         x += 0.01) {
+      ++cells;
+      hits += m.p_occupied[*g.StorageIndexAt(Vector2d(x, -kWallM))] == 0.7f ? 1 : 0;
+    }
+    return std::pair{hits, cells};
+  };
+  const auto [joined, samples] = hits_along_wall(1.0);
+  EXPECT_EQ(joined, samples);
+  const auto [beams_only, samples_too] = hits_along_wall(0.0);
+  EXPECT_LT(beams_only, samples_too * 9 / 10);
+}
+
+// Two poles 2 m apart at the same range are two objects, not one surface: the cells between
+// them stay as the beams passing between them left them (free).
+TEST(InverseSensorModelTest, ReturnsFartherApartThanTheGapAreNotJoined) {
+  const ScrollingGridGeometry g(GridOptions{});
+  const double increment = DegToRad(0.25);
+  std::vector<float> ranges(81, kInf);  // -10 .. +10 degrees
+  for (int i = 0; i < 4; ++i) {
+    ranges[static_cast<std::size_t>(i + 10)] = 10.0f;   // about -7.5 degrees: y = -1.3 m
+    ranges[static_cast<std::size_t>(i + 67)] = 10.0f;   // about +6.75 degrees: y = +1.2 m
+  }
+  const LidarScan scan = Scan(DegToRad(-10.0), increment, ranges);
+  const MeasurementGrid m = ComputeInverseSensorModel(scan, Pose2(0.0, 0.0, 0.0), g, Options());
+  EXPECT_EQ(m.stats.surface_segments, 6);  // three within each pole
+  for (double y = -0.5; y <= 0.5; y += 0.05) {
+    EXPECT_NE(m.p_occupied[*g.StorageIndexAt(Vector2d(9.95, y))], 0.7f) << "y = " << y;
+  }
 }
 
 // The same wall in the grid frame, scanned from a rotated, translated sensor: the model must
