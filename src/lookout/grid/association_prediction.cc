@@ -22,6 +22,10 @@ bool IsSource(double occupancy, double seen, const FilterOptions& options) {
          (seen >= options.seen_threshold && occupancy >= options.tracked_min_occupancy);
 }
 
+double PredictVelocity(double velocity_mps, double dt_s, const FilterOptions& options) {
+  return velocity_mps * std::exp(-dt_s / options.velocity_persistence_s);
+}
+
 SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
                              double confidence, const float* class_pmf, double dt_s,
                              double cell_size_m, const FilterOptions& options) {
@@ -86,8 +90,10 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
     const std::size_t cell = a.source[s];
     a.occupancy[s] = occupancy[cell];
     a.seen[s] = seen[cell];
-    a.velocity_x_mps[s] = vx[cell];
-    a.velocity_y_mps[s] = vy[cell];
+    a.velocity_x_mps[s] = static_cast<float>(
+        PredictVelocity(static_cast<double>(vx[cell]), dt_s, options));
+    a.velocity_y_mps[s] = static_cast<float>(
+        PredictVelocity(static_cast<double>(vy[cell]), dt_s, options));
     a.confidence[s] = confidence[cell];
     for (std::size_t k = 0; k < kGridClassCount; ++k) {
       a.class_pmf[s * kGridClassCount + k] = class_layers[k][cell];
@@ -95,7 +101,8 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
     for (std::size_t d = 0; d < kNeighbourCount; ++d) {
       a.rigidity[s * kNeighbourCount + d] = rigidity_layers[d][cell];
     }
-    a.window[s] = SearchWindowFor(static_cast<double>(vx[cell]), static_cast<double>(vy[cell]),
+    a.window[s] = SearchWindowFor(static_cast<double>(a.velocity_x_mps[s]),
+                                  static_cast<double>(a.velocity_y_mps[s]),
                                   static_cast<double>(seen[cell]),
                                   static_cast<double>(confidence[cell]),
                                   &a.class_pmf[s * kGridClassCount], dt_s, cell_size_m, options);

@@ -28,6 +28,10 @@ double AssociationSigmaCells(const float* class_pmf, double dt_s, double cell_si
 // (S >= seen_threshold) and O >= tracked_min_occupancy. The rest of the map stays in place.
 bool IsSource(double occupancy, double seen, const FilterOptions& options);
 
+// The motion model's prediction of one velocity component over dt_s: the estimate decays by
+// exp(-dt / velocity_persistence_s) (FilterOptions says why). Pure.
+double PredictVelocity(double velocity_mps, double dt_s, const FilterOptions& options);
+
 // The search window of a source with the given state (used by the fast path and the reference).
 SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
                              double confidence, const float* class_pmf, double dt_s, double cell_size_m,

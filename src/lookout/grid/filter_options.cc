@@ -21,6 +21,8 @@ void FilterOptions::Validate(const std::string& source) const {
           "must be in [0.5, 1)");
   Require(tracked_min_occupancy > 0.0 && tracked_min_occupancy <= active_occupancy, source,
           "tracked_min_occupancy", "must be in (0, active_occupancy]");
+  Require(velocity_persistence_s > 0.0, source, "velocity_persistence_s",
+          "must be > 0 (infinity: no decay)");
   Require(known_confidence >= 0.0 && known_confidence <= 1.0, source, "known_confidence",
           "must be in [0, 1]");
   Require(window_size_cells >= 1 && window_size_cells % 2 == 1 && window_size_cells <= 31,

@@ -55,8 +55,11 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
       s.cell = cell;
       s.local = {lx, ly};
       s.occupancy = static_cast<double>(occupancy[cell]);
-      s.vx = static_cast<double>(vx[cell]);
-      s.vy = static_cast<double>(vy[cell]);
+      // As the fast path: the velocity predicted in float, the layers' type.
+      s.vx = static_cast<double>(
+          static_cast<float>(PredictVelocity(static_cast<double>(vx[cell]), dt_s, options)));
+      s.vy = static_cast<double>(
+          static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
       s.confidence = static_cast<double>(confidence[cell]);
       float pmf[kGridClassCount];
       for (std::size_t c = 0; c < kGridClassCount; ++c) pmf[c] = layers.Values(ids.class_pmf[c])[cell];
@@ -194,9 +197,6 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
       carried[i] += w;
       cover[i] += m.p;
       w_sum[i] += w;
-      dx[i] += w * m.displacement.ix;
-      dy[i] += w * m.displacement.iy;
-      d2[i] += w * (m.displacement.ix * m.displacement.ix + m.displacement.iy * m.displacement.iy);
       cvx[i] += w * s.vx;
       cvy[i] += w * s.vy;
       cconf[i] += w * s.confidence;
@@ -209,10 +209,12 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
   // --- eq. 12-13 and 14 per cell.
   const double gamma = options.renewal_rate;
   const double alpha = options.velocity_blend;
+  std::vector<char> updated(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const bool is_source = source_of[i] >= 0;
     const double m = static_cast<double>(z.p_occupied[i]);
     if (!is_source && cover[i] == 0.0 && m == 0.5) continue;  // nothing moves, nothing seen
+    updated[i] = 1;
     const double prior =
         is_source ? std::min(1.0, carried[i]) + std::max(0.0, 1.0 - cover[i]) * 0.5 * gamma
                   : std::max(std::min(1.0, carried[i]), static_cast<double>(occupancy[i]));
@@ -225,7 +227,40 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
         std::clamp(posterior, options.occupancy_clamp, 1.0 - options.occupancy_clamp));
     const double seen_i = std::clamp(seen_mass / prior, 0.0, 1.0);
     seen[i] = static_cast<float>(seen_i);
+  }
 
+  // --- eq. 14 as built: each source's displacement posterior, weighted by whether its mass
+  // survived where it went (the target's posterior occupancy), then gathered per target.
+  std::vector<double> source_mx(sources.size(), 0.0), source_my(sources.size(), 0.0),
+      source_var(sources.size(), 0.0);
+  for (std::size_t j = 0; j < sources.size(); ++j) {
+    double ws = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
+    for (const Move& m : sources[j].moves) {
+      if (m.target < 0) continue;
+      const double w = m.p * static_cast<double>(occupancy[static_cast<std::size_t>(m.target)]);
+      ws += w;
+      sx += w * m.displacement.ix;
+      sy += w * m.displacement.iy;
+      s2 += w * (m.displacement.ix * m.displacement.ix + m.displacement.iy * m.displacement.iy);
+    }
+    if (ws <= 0.0) continue;
+    source_mx[j] = sx / ws;
+    source_my[j] = sy / ws;
+    source_var[j] = std::max(0.0, s2 / ws - source_mx[j] * source_mx[j] - source_my[j] * source_my[j]);
+  }
+  for (std::size_t j = 0; j < sources.size(); ++j) {
+    for (const Move& m : sources[j].moves) {
+      if (m.target < 0) continue;
+      const auto i = static_cast<std::size_t>(m.target);
+      const double w = m.p * sources[j].occupancy;
+      dx[i] += w * source_mx[j];
+      dy[i] += w * source_my[j];
+      d2[i] += w * (source_var[j] + source_mx[j] * source_mx[j] + source_my[j] * source_my[j]);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!updated[i]) continue;
+    const bool is_source = source_of[i] >= 0;
     const double ws = w_sum[i];
     if (ws > 0.0) {
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
