@@ -1,0 +1,73 @@
+#pragma once
+
+// Risk assessment of seed 004 section VIII, steps B-D, for one instant:
+//   B. trajectory prediction to the horizon: vehicles (the ego included) by the kinematic bicycle
+//      model (bicycle_model.h); cyclists too (they keep to their path like vehicles, and a
+//      bicycle turns through an arc, not on the spot), with the smaller circle; pedestrians as a
+//      circle at the detected position whose radius grows with the estimated speed, no direction
+//      assumed (the paper); unknown objects as pedestrians, with the unknown radius;
+//   C. collision detection: a circle per object per step (collision.h), its radius the type's
+//      plus the position uncertainty (track covariance, growing with the distance travelled);
+//   D. quantification: the TTC of the earliest potential collision, and the risk indicator.
+//
+// The risk indicator (the paper's Fig. 7, whose curve the text does not state; Lookout's
+// reading): 1 when the TTC is at most the total reaction time (2 s: nothing the driver starts
+// then can avoid the collision), falling linearly to 0 at the horizon, 0 without a collision
+// inside the horizon.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "lookout/core/object_class.h"
+#include "lookout/risk/collision.h"
+#include "lookout/risk/risk_options.h"
+
+namespace lookout::risk {
+
+// The ego as the scenario interpretation (step A) gives it, in a ground-fixed frame.
+struct EgoInput {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  double yaw_rad = 0.0;
+  double speed_mps = 0.0;
+  double acceleration_mps2 = 0.0;
+  double yaw_rate_radps = 0.0;
+};
+
+// A tracked object in the same frame.
+struct ObjectInput {
+  std::uint32_t id = 0;
+  ObjectClass object_class = ObjectClass::kUnknown;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+  double yaw_rate_radps = 0.0;
+  Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();  // m^2
+};
+
+struct ObjectRisk {
+  std::uint32_t id = 0;
+  std::optional<double> ttc_s;
+  double risk = 0.0;
+};
+
+struct RiskAssessment {
+  std::vector<ObjectRisk> objects;     // in input order, the dropped ones left out
+  std::optional<std::size_t> earliest; // index into objects of the smallest TTC
+  double risk = 0.0;                   // of the earliest potential collision
+  std::size_t dropped = 0;             // objects with NaN fields or a non-PSD covariance
+};
+
+// The risk indicator of a TTC (nullopt: no collision within the horizon). Pure.
+double RiskIndicator(std::optional<double> ttc_s, const RiskOptions& options);
+
+// The circles of each prediction (exposed for tests and the recording). Pure.
+CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options);
+CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options);
+
+// Steps B-D. `options` must pass Validate(). Objects with a non-finite field or a covariance
+// that is not symmetric positive semi-definite are dropped and counted, never used. Pure.
+RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& objects,
+                          const RiskOptions& options);
+
+}  // namespace lookout::risk
