@@ -1,0 +1,35 @@
+#pragma once
+
+// Indicators beyond the paper's TTC (issue: risk quantification):
+//   - the collision probability, by sampling the object's initial position and velocity from
+//     its track covariance (seeded Monte Carlo): the share of samples whose circle meets the
+//     ego's inside the horizon. Each sample moves by the nominal prediction plus its offsets,
+//     dp + dv t: exact for straight motion, first order for a predicted turn;
+//   - the post-encroachment time (PET): the smallest time gap between the ego and the object
+//     occupying the same place (their circles overlapping at steps i and j: |t_i - t_j|). 0 is
+//     a collision; a few tenths of a second, a near miss.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+
+#include "lookout/risk/collision.h"
+
+namespace lookout::risk {
+
+struct SamplingInput {
+  Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();  // m^2, PSD
+  Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Zero();  // (m/s)^2, PSD
+  int samples = 1000;
+  std::uint64_t seed = 0;  // the same seed, the same probability
+};
+
+// `object`: the nominal prediction, circles without the covariance margin. Pure.
+double CollisionProbability(const CircleTrack& ego, const CircleTrack& object, double dt_s,
+                            const SamplingInput& sampling);
+
+// nullopt when the two never occupy the same place within the horizon. Pure.
+std::optional<double> PostEncroachmentTime(const CircleTrack& ego, const CircleTrack& object,
+                                           double dt_s);
+
+}  // namespace lookout::risk
