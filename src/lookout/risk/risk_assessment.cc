@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lookout/core/random.h"
 #include "lookout/risk/bicycle_model.h"
+#include "lookout/risk/risk_indicators.h"
 
 namespace lookout::risk {
 namespace {
@@ -45,15 +47,19 @@ std::size_t StepCount(const RiskOptions& o) {
   return static_cast<std::size_t>(std::floor(o.horizon_s / o.step_s + 1e-9)) + 1;
 }
 
-bool Valid(const ObjectInput& object) {
-  if (!object.position_m.allFinite() || !object.velocity_mps.allFinite() ||
-      !std::isfinite(object.yaw_rate_radps) || !object.position_covariance.allFinite()) {
-    return false;
-  }
-  const Eigen::Matrix2d& p = object.position_covariance;
+bool SymmetricPsd(const Eigen::Matrix2d& p) {
+  if (!p.allFinite()) return false;
   if (std::abs(p(0, 1) - p(1, 0)) > 1e-9 * (1.0 + p.cwiseAbs().maxCoeff())) return false;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(p);
   return eig.eigenvalues().minCoeff() >= -1e-12;
+}
+
+bool Valid(const ObjectInput& object) {
+  if (!object.position_m.allFinite() || !object.velocity_mps.allFinite() ||
+      !std::isfinite(object.yaw_rate_radps)) {
+    return false;
+  }
+  return SymmetricPsd(object.position_covariance) && SymmetricPsd(object.velocity_covariance);
 }
 
 }  // namespace
@@ -77,10 +83,12 @@ CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options) {
                       options.ego_radius_m, options.growth_per_metre);
 }
 
-CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options) {
+CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
+                          bool covariance_margin) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(object.position_covariance);
   const double sigma = std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
-  const double radius = TypeRadius(object.object_class, options) + options.covariance_sigmas * sigma;
+  const double radius = TypeRadius(object.object_class, options) +
+                        (covariance_margin ? options.covariance_sigmas * sigma : 0.0);
   const double speed = object.velocity_mps.norm();
   if (MovesLikeAVehicle(object.object_class)) {
     const double yaw = speed > 1e-9 ? std::atan2(object.velocity_mps.y(), object.velocity_mps.x())
@@ -107,6 +115,8 @@ RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& o
                           const RiskOptions& options) {
   RiskAssessment out;
   const CircleTrack ego_track = PredictEgo(ego, options);
+  const std::vector<Eigen::Vector4d> normals =
+      DrawStandardNormals(options.collision_samples, DeriveSeed(options.seed, "risk", 0));
   for (const ObjectInput& object : objects) {
     if (!Valid(object)) {
       ++out.dropped;
@@ -114,10 +124,16 @@ RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& o
     }
     ObjectRisk r;
     r.id = object.id;
-    if (const auto c = FirstCollision(ego_track, PredictObject(object, options), options.step_s)) {
-      r.ttc_s = c->ttc_s;
-    }
+    const CircleTrack track = PredictObject(object, options);
+    if (const auto c = FirstCollision(ego_track, track, options.step_s)) r.ttc_s = c->ttc_s;
     r.risk = RiskIndicator(r.ttc_s, options);
+    r.pet_s = PostEncroachmentTime(ego_track, track, options.step_s);
+    if (options.collision_samples > 0) {
+      const SamplingInput sampling{object.position_covariance, object.velocity_covariance};
+      r.collision_probability = CollisionProbability(
+          ego_track, PredictObject(object, options, /*covariance_margin=*/false), options.step_s,
+          sampling, normals);
+    }
     out.objects.push_back(r);
     const std::size_t i = out.objects.size() - 1;
     if (r.ttc_s && (!out.earliest || *r.ttc_s < *out.objects[*out.earliest].ttc_s)) {

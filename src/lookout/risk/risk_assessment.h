@@ -8,7 +8,9 @@
 //      assumed (the paper); unknown objects as pedestrians, with the unknown radius;
 //   C. collision detection: a circle per object per step (collision.h), its radius the type's
 //      plus the position uncertainty (track covariance, growing with the distance travelled);
-//   D. quantification: the TTC of the earliest potential collision, and the risk indicator.
+//   D. quantification: the TTC of the earliest potential collision, and the risk indicator;
+//      beyond the paper, the collision probability and the post-encroachment time
+//      (risk_indicators.h).
 //
 // The risk indicator (the paper's Fig. 7, whose curve the text does not state; Lookout's
 // reading): 1 when the TTC is at most the total reaction time (2 s: nothing the driver starts
@@ -43,12 +45,15 @@ struct ObjectInput {
   Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
   double yaw_rate_radps = 0.0;
   Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();  // m^2
+  Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Zero();  // (m/s)^2
 };
 
 struct ObjectRisk {
   std::uint32_t id = 0;
   std::optional<double> ttc_s;
   double risk = 0.0;
+  double collision_probability = 0.0;  // 0 when RiskOptions::collision_samples is 0
+  std::optional<double> pet_s;         // post-encroachment time
 };
 
 struct RiskAssessment {
@@ -63,7 +68,10 @@ double RiskIndicator(std::optional<double> ttc_s, const RiskOptions& options);
 
 // The circles of each prediction (exposed for tests and the recording). Pure.
 CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options);
-CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options);
+// With `covariance_margin` false, the circles leave out the track covariance's margin (for
+// sampling, which draws the uncertainty itself).
+CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
+                          bool covariance_margin = true);
 
 // Steps B-D. `options` must pass Validate(). Objects with a non-finite field or a covariance
 // that is not symmetric positive semi-definite are dropped and counted, never used. Pure.

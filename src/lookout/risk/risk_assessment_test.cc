@@ -119,3 +119,40 @@ TEST(RiskAssessmentTest, PositionUncertaintyWidensTheCircles) {
 
 }  // namespace
 }  // namespace lookout::risk
+
+namespace lookout::risk {
+namespace {
+
+// A car whose lateral position is uncertain, passing 4 m beside the ego's path: the collision
+// probability is the chance its lateral offset brings the circles within reach, and it rises
+// with the uncertainty; the post-encroachment time of a head-on collision is 0.
+TEST(RiskAssessmentTest, ProbabilityRisesWithUncertainty) {
+  RiskOptions o = NoGrowth();
+  o.seed = 3;
+  EgoInput ego;
+  ego.speed_mps = 10.0;
+  ObjectInput car;
+  car.object_class = ObjectClass::kCar;
+  car.position_m = {60.0, 5.5};
+  car.velocity_mps = {-10.0, 0.0};
+  double previous = -1.0;
+  for (const double sigma : {0.1, 0.5, 1.0, 2.0}) {
+    car.position_covariance = Eigen::Matrix2d::Identity() * sigma * sigma;
+    const RiskAssessment a = AssessRisk(ego, {car}, o);
+    ASSERT_EQ(a.objects.size(), 1u);
+    EXPECT_GT(a.objects[0].collision_probability, previous) << "sigma " << sigma;
+    previous = a.objects[0].collision_probability;
+  }
+  // sigma 2 m, reach 4.84 m, offset 5.5 m: P(dy < -0.66 m) = Phi(-0.33), about 0.37.
+  EXPECT_NEAR(previous, 0.5 * std::erfc(0.33 / std::sqrt(2.0)), 0.05);
+
+  car.position_m = {60.0, 0.0};
+  car.position_covariance.setZero();
+  const RiskAssessment head_on = AssessRisk(ego, {car}, o);
+  ASSERT_TRUE(head_on.objects[0].pet_s.has_value());
+  EXPECT_EQ(*head_on.objects[0].pet_s, 0.0);
+  EXPECT_EQ(head_on.objects[0].collision_probability, 1.0);
+}
+
+}  // namespace
+}  // namespace lookout::risk

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "lookout/risk/collision.h"
 
@@ -20,13 +21,20 @@ namespace lookout::risk {
 struct SamplingInput {
   Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();  // m^2, PSD
   Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Zero();  // (m/s)^2, PSD
-  int samples = 1000;
-  std::uint64_t seed = 0;  // the same seed, the same probability
 };
 
-// `object`: the nominal prediction, circles without the covariance margin. Pure.
+// Standard normal draws, four per sample (position x, y, velocity x, y), from `seed`. One set
+// serves every object of a risk step (common random numbers): each object's probability is
+// still an unbiased estimate, and drawing once instead of per object is what makes 1000
+// samples for 30 tracks fit in a millisecond.
+std::vector<Eigen::Vector4d> DrawStandardNormals(int samples, std::uint64_t seed);
+
+// `object`: the nominal prediction, circles without the covariance margin. The share of the
+// samples (`normals`, mapped through the covariances' square roots) whose circle meets the
+// ego's. Pure.
 double CollisionProbability(const CircleTrack& ego, const CircleTrack& object, double dt_s,
-                            const SamplingInput& sampling);
+                            const SamplingInput& sampling,
+                            const std::vector<Eigen::Vector4d>& normals);
 
 // nullopt when the two never occupy the same place within the horizon. Pure.
 std::optional<double> PostEncroachmentTime(const CircleTrack& ego, const CircleTrack& object,

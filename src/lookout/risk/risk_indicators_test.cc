@@ -26,12 +26,12 @@ TEST(RiskIndicatorsTest, CollisionProbabilityMatchesTheAnalyticCase) {
   for (const double sigma : {0.5, 1.5, 3.0}) {
     SamplingInput s;
     s.position_covariance << 1e-12, 0.0, 0.0, sigma * sigma;
-    s.samples = 20000;
-    s.seed = 20261122;
-    const double p = CollisionProbability(ego, car, kDt, s);
+    constexpr int kSamples = 20000;
+    constexpr std::uint64_t kSeed = 20261122;
+    const double p = CollisionProbability(ego, car, kDt, s, DrawStandardNormals(kSamples, kSeed));
     const double expected = std::erf(2.0 / (sigma * std::sqrt(2.0)));
-    const double tolerance = 4.0 * std::sqrt(expected * (1.0 - expected) / s.samples) + 1e-3;
-    EXPECT_NEAR(p, expected, tolerance) << "sigma " << sigma << ", seed " << s.seed;
+    const double tolerance = 4.0 * std::sqrt(expected * (1.0 - expected) / kSamples) + 1e-3;
+    EXPECT_NEAR(p, expected, tolerance) << "sigma " << sigma << ", seed " << kSeed;
   }
 }
 
@@ -41,8 +41,8 @@ TEST(RiskIndicatorsTest, CollisionProbabilityIsDeterministicPerSeed) {
   SamplingInput s;
   s.position_covariance = Eigen::Matrix2d::Identity() * 2.0;
   s.velocity_covariance = Eigen::Matrix2d::Identity() * 0.5;
-  s.seed = 5;
-  EXPECT_EQ(CollisionProbability(ego, car, kDt, s), CollisionProbability(ego, car, kDt, s));
+  EXPECT_EQ(CollisionProbability(ego, car, kDt, s, DrawStandardNormals(1000, 5)),
+            CollisionProbability(ego, car, kDt, s, DrawStandardNormals(1000, 5)));
 }
 
 // Crossing paths that miss by a known time: the ego (east at 10 m/s from x = -30) occupies the
@@ -55,6 +55,27 @@ TEST(RiskIndicatorsTest, PostEncroachmentTimeOfCrossingPaths) {
   ASSERT_TRUE(pet.has_value());
   EXPECT_NEAR(*pet, 1.0, 1e-9);
   EXPECT_FALSE(PostEncroachmentTime(ego, Straight({0.0, 5.0}, {0.0, 8.0}, 0.05), kDt));
+}
+
+}  // namespace
+}  // namespace lookout::risk
+
+namespace lookout::risk {
+namespace {
+
+// The shortcut for far objects (no sample drawn beyond 6 sigma) must not change a probability
+// that sampling would find: an object 6.5 sigma away still reads 0, one at 3 sigma does not.
+TEST(RiskIndicatorsTest, FarObjectsAreZeroWithoutSampling) {
+  const CircleTrack ego = Straight({0.0, 0.0}, {10.0, 0.0}, 1.0);
+  SamplingInput s;
+  s.position_covariance = Eigen::Matrix2d::Identity();  // sigma 1 m
+  const auto normals = DrawStandardNormals(20000, 9);
+  // Nominal gap: lateral offset minus the reach of 2 m.
+  EXPECT_EQ(CollisionProbability(ego, Straight({60.0, 8.5}, {-10.0, 0.0}, 1.0), kDt, s, normals),
+            0.0);
+  const double p3 =
+      CollisionProbability(ego, Straight({60.0, 5.0}, {-10.0, 0.0}, 1.0), kDt, s, normals);
+  EXPECT_NEAR(p3, 0.5 * std::erfc(3.0 / std::sqrt(2.0)), 0.002);
 }
 
 }  // namespace

@@ -32,6 +32,8 @@ void RiskOptions::Validate(const std::string& source) const {
   Require(NonNegative(growth_per_metre), source, "growth_per_metre", "must be >= 0");
   Require(NonNegative(pedestrian_growth_factor), source, "pedestrian_growth_factor",
           "must be >= 0");
+  Require(collision_samples >= 0 && collision_samples <= 1000000, source, "collision_samples",
+          "must be in [0, 10^6]");
   Require(Positive(reaction_time_s) && reaction_time_s < horizon_s, source, "reaction_time_s",
           "must be > 0 and below the horizon");
 }

@@ -2,6 +2,7 @@
 
 // Options of the risk stage (seed 004 section VIII), one plain struct with units in the names.
 
+#include <cstdint>
 #include <string>
 
 namespace lookout::risk {
@@ -31,6 +32,12 @@ struct RiskOptions {
   // Pedestrians (seed 004): no direction assumed; the circle stays at the detected position
   // and its radius grows in proportion to the estimated speed: r0 + factor * speed * t.
   double pedestrian_growth_factor = 1.0;
+
+  // Collision probability (risk_indicators.h): samples per object, 0 to skip, and the seed of
+  // the draws (one set per step, shared by the objects: the same tracks give the same
+  // probabilities, whatever their order).
+  int collision_samples = 1000;
+  std::uint64_t seed = 0;
 
   // Risk: the total reaction time (driver 1 s + vehicle 1 s) against which the TTC is weighed.
   double reaction_time_s = 2.0;
