@@ -1,0 +1,161 @@
+#include "lookout/tracking/gnn_tracker.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "lookout/assignment/linear_assignment.h"
+#include "lookout/core/input_error.h"
+#include "lookout/tracking/chi_square.h"
+#include "lookout/tracking/motion_models.h"
+
+namespace lookout::tracking {
+namespace {
+
+bool Usable(const Detection& d) {
+  if (!d.position_m.allFinite() || !d.covariance.allFinite()) return false;
+  const Eigen::Matrix2d& c = d.covariance;
+  if (std::abs(c(0, 1) - c(1, 0)) > 1e-9 * (1.0 + c.cwiseAbs().maxCoeff())) return false;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(c).eigenvalues().minCoeff() > 0.0;
+}
+
+}  // namespace
+
+void GnnOptions::Validate(const std::string& source) const {
+  auto require = [&](bool ok, const char* field, const char* problem) {
+    if (!ok) throw InputError(source, 0, field, problem);
+  };
+  require(std::isfinite(acceleration_psd) && acceleration_psd > 0.0, "acceleration_psd",
+          "must be > 0");
+  require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability",
+          "must be in (0, 1)");
+  require(std::isfinite(initial_speed_sigma_mps) && initial_speed_sigma_mps > 0.0,
+          "initial_speed_sigma_mps", "must be > 0");
+  require(confirm_updates_one_sensor >= 1, "confirm_updates_one_sensor", "must be >= 1");
+  require(confirm_updates_two_sensors >= 1, "confirm_updates_two_sensors", "must be >= 1");
+  for (const int m : {max_misses_pedestrian, max_misses_cyclist, max_misses_vehicle,
+                      max_misses_unknown, max_misses_tentative}) {
+    require(m >= 0, "max_misses_*", "must be >= 0");
+  }
+}
+
+bool ClassesCompatible(ObjectClass track, ObjectClass detection) {
+  if (track == ObjectClass::kUnknown || detection == ObjectClass::kUnknown) return true;
+  const auto vehicle = [](ObjectClass c) {
+    return c == ObjectClass::kCar || c == ObjectClass::kTruck;
+  };
+  if (vehicle(track) && vehicle(detection)) return true;  // car and truck are easily confused
+  return track == detection;
+}
+
+GnnTracker::GnnTracker(const GnnOptions& options) : options_(options) { options_.Validate(); }
+
+int GnnTracker::MaxMisses(const Track& t) const {
+  if (t.status == TrackStatus::kTentative) return options_.max_misses_tentative;
+  switch (t.object_class) {
+    case ObjectClass::kPedestrian: return options_.max_misses_pedestrian;
+    case ObjectClass::kCyclist: return options_.max_misses_cyclist;
+    case ObjectClass::kCar:
+    case ObjectClass::kTruck: return options_.max_misses_vehicle;
+    case ObjectClass::kPole:
+    case ObjectClass::kUnknown: return options_.max_misses_unknown;
+  }
+  return options_.max_misses_unknown;
+}
+
+bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
+  if (last_stamp_ && stamp <= *last_stamp_) {
+    ++refused_;
+    return false;
+  }
+  std::vector<Detection> detections;
+  detections.reserve(all.size());
+  for (const Detection& d : all) {
+    if (Usable(d)) {
+      detections.push_back(d);
+    } else {
+      ++dropped_;
+    }
+  }
+  const MotionModel cv = ConstantVelocity(options_.acceleration_psd);
+  // Predict every track to this scan.
+  std::vector<MeasurementPrediction> predicted(tracks_.size());
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    Track& t = tracks_[i];
+    t.state = PredictState(cv, t.state, ToSeconds(stamp - t.stamp));
+    t.stamp = stamp;
+  }
+  // Costs: the negative log-likelihood of each gated (track, detection) pair.
+  const double gate = ChiSquareQuantile(options_.gate_probability, 2.0);
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(tracks_.size()),
+                                                   static_cast<Eigen::Index>(detections.size()),
+                                                   assignment::kForbidden);
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    for (std::size_t j = 0; j < detections.size(); ++j) {
+      if (!ClassesCompatible(tracks_[i].object_class, detections[j].object_class)) continue;
+      const MeasurementPrediction p = PredictMeasurement(tracks_[i].state, detections[j].covariance);
+      const Eigen::Vector2d v = detections[j].position_m - p.z;
+      if (NormalisedSquare(v, p.S) > gate) continue;
+      cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+          -GaussianLogLikelihood(v, p.S);
+    }
+  }
+  const assignment::Assignment a = assignment::SolveLinearAssignment(cost);
+  std::vector<bool> used(detections.size(), false);
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    Track& t = tracks_[i];
+    const int j = a.column_of_row[i];
+    if (j == assignment::kUnassigned) {
+      ++t.misses;
+      t.coasting = true;
+      continue;
+    }
+    const Detection& d = detections[static_cast<std::size_t>(j)];
+    used[static_cast<std::size_t>(j)] = true;
+    t.state = UpdateState(t.state, d.position_m, d.covariance).posterior;
+    ++t.updates;
+    t.misses = 0;
+    t.coasting = false;
+    if (t.object_class == ObjectClass::kUnknown) t.object_class = d.object_class;
+    const int needed = d.sensors >= 2 ? options_.confirm_updates_two_sensors
+                                      : options_.confirm_updates_one_sensor;
+    if (t.status == TrackStatus::kTentative && t.updates >= needed) {
+      t.status = TrackStatus::kConfirmed;
+    }
+  }
+  // Delete tracks missed too often (in order, so ids stay sorted).
+  tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+                               [&](const Track& t) { return t.misses > MaxMisses(t); }),
+                tracks_.end());
+  // New tentative tracks from the detections no track took.
+  for (std::size_t j = 0; j < detections.size(); ++j) {
+    if (used[j]) continue;
+    const Detection& d = detections[j];
+    Track t;
+    t.id = next_id_++;
+    t.object_class = d.object_class;
+    t.stamp = stamp;
+    t.updates = 1;
+    t.state.mean = Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0);
+    Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
+    p.topLeftCorner<2, 2>() = d.covariance;
+    p.bottomRightCorner<2, 2>() =
+        Eigen::Matrix2d::Identity() * options_.initial_speed_sigma_mps * options_.initial_speed_sigma_mps;
+    t.state.cov = p;
+    if (d.sensors >= 2 && options_.confirm_updates_two_sensors <= 1) t.status = TrackStatus::kConfirmed;
+    if (options_.confirm_updates_one_sensor <= 1) t.status = TrackStatus::kConfirmed;
+    tracks_.push_back(t);
+  }
+  last_stamp_ = stamp;
+  return true;
+}
+
+std::vector<Track> GnnTracker::ConfirmedTracks() const {
+  std::vector<Track> out;
+  for (const Track& t : tracks_) {
+    if (t.status == TrackStatus::kConfirmed) out.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace lookout::tracking
