@@ -56,20 +56,6 @@ double SegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d& b) 
   return (p - (a + t * ab)).norm();
 }
 
-// Euclidean distance from p to the closed shape (0 inside or on it).
-double DistanceToShape(const sim::Shape& shape, const Vector2d& p) {
-  if (shape.kind == sim::Shape::Kind::kCircle) {
-    return std::max(0.0, (p - shape.center).norm() - shape.radius);
-  }
-  if (sim::Contains(shape, p)) return 0.0;
-  double best = std::numeric_limits<double>::infinity();
-  const std::size_t n = shape.vertices.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    best = std::min(best, SegmentDistance(p, shape.vertices[i], shape.vertices[(i + 1) % n]));
-  }
-  return best;
-}
-
 // The footprint's reference point for "is the actor inside the grid".
 Vector2d ShapeCentre(const sim::Shape& shape) {
   if (shape.kind == sim::Shape::Kind::kCircle) return shape.center;
@@ -85,6 +71,19 @@ sim::Shape ShapeIn(const sim::Shape& shape, const Pose2& target_from_world) {
 }
 
 }  // namespace
+
+double DistanceToShape(const sim::Shape& shape, const Vector2d& p) {
+  if (shape.kind == sim::Shape::Kind::kCircle) {
+    return std::max(0.0, (p - shape.center).norm() - shape.radius);
+  }
+  if (sim::Contains(shape, p)) return 0.0;
+  double best = std::numeric_limits<double>::infinity();
+  const std::size_t n = shape.vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    best = std::min(best, SegmentDistance(p, shape.vertices[i], shape.vertices[(i + 1) % n]));
+  }
+  return best;
+}
 
 sim::TruthFrame TruthFrameIn(const sim::TruthFrame& frame, const Pose2& target_from_world) {
   sim::TruthFrame out = frame;

@@ -68,6 +68,9 @@ sim::TruthFrame TruthFrameIn(const sim::TruthFrame& frame, const Pose2& target_f
 std::vector<sim::Shape> ShapesIn(const std::vector<sim::Shape>& shapes,
                                  const Pose2& target_from_world);
 
+// Euclidean distance from p to the closed shape (0 inside or on it), m.
+double DistanceToShape(const sim::Shape& shape, const Eigen::Vector2d& p);
+
 // --- per-frame sums (pure functions). Each throws std::invalid_argument when the belief's
 // layers do not match its geometry, or the truth (mask) is on another geometry.
 
