@@ -59,10 +59,11 @@ case "$case_name" in
     node -e '
       const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
       // 12 s: lidar 12.5 Hz -> 151 frames, stereo 20 Hz -> 241, odometry 50 Hz -> 601; the grid
-      // every fifth lidar frame -> 31; /tf: two mounts, world -> odom, and one per lidar frame.
+      // every fifth lidar frame -> 31; /tf: two mounts, world -> odom, and one per lidar frame;
+      // the grid objects at every lidar frame -> 151.
       const want = {"/lidar/scan": 151, "/stereo/objects": 241, "/odometry": 601,
                     "/truth/actors": 151, "/truth/scene": 151, "/truth/ego": 151,
-                    "/tf": 154, "/world/static": 1, "/grid/belief": 31};
+                    "/tf": 154, "/world/static": 1, "/grid/belief": 31, "/lidar/objects": 151};
       for (const [topic, n] of Object.entries(want)) {
         if (r.topics[topic] !== n) { console.error(`${topic}: ${r.topics[topic]} != ${n}`); process.exit(1); }
       }

@@ -12,10 +12,14 @@ constexpr double kFirstCycleDt_s = 0.08;
 }  // namespace
 
 GridStage::GridStage(const grid::GridOptions& grid_options,
-                     const grid::FilterOptions& filter_options)
+                     const grid::FilterOptions& filter_options,
+                     const grid::GridObjectOptions& object_options)
     : options_(grid_options),
+      object_options_(object_options),
       grid_(grid::ScrollingGridGeometry(grid_options), filter_options),
-      measurement_{grid::ScrollingGridGeometry(grid_options), 0, {}, {}, {}} {}
+      measurement_{grid::ScrollingGridGeometry(grid_options), 0, {}, {}, {}} {
+  object_options_.Validate();
+}
 
 void GridStage::OnOdometry(const EgoOdometry& odometry) { ego_.Add(odometry); }
 
@@ -33,8 +37,17 @@ void GridStage::OnLidar(const LidarScan& scan) {
                                   options_.inverse_sensor_model, measurement_);
   const double dt_s = last_stamp_ ? ToSeconds(scan.stamp - *last_stamp_) : kFirstCycleDt_s;
   grid_.Update(measurement_, dt_s);
-  cycle_ms_.push_back(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  const auto updated = std::chrono::steady_clock::now();
+  cycle_ms_.push_back(std::chrono::duration<double, std::milli>(updated - start).count());
+
+  grid::ObjectFrameContext context;
+  context.stamp = scan.stamp;
+  context.ego_pose = ego->pose;
+  context.lidar_mount = scan.mount;
+  context.dt_s = dt_s;
+  last_objects_ = grid::ExtractGridObjects(grid_, context, object_options_);
+  const auto extracted = std::chrono::steady_clock::now();
+  objects_ms_.push_back(std::chrono::duration<double, std::milli>(extracted - updated).count());
   last_stamp_ = scan.stamp;
   last_sensor_pose_ = sensor_pose;
 }

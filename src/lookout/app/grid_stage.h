@@ -3,7 +3,13 @@
 // The extended grid as a pipeline stage: odometry feeds the ego pose (dead reckoning, through
 // the EgoPoseSource interface the lidar chain will also implement), and each lidar scan runs
 // one cycle: scroll the window to the ego, compute the inverse sensor model, update the filter
-// (docs/extended-grid.md steps 1-8).
+// (docs/extended-grid.md steps 1-8), and take the rigid clusters of dynamic cells out of the
+// grid as lidar objects (grid/grid_objects.h).
+//
+// Why the objects come out of this stage rather than a stage of their own: they are a reading
+// of the grid's state right after its cycle, in the vehicle frame at the scan's ego pose, and
+// only this stage holds both the grid and that pose; a separate stage would have to reach into
+// this one's internals (stage.h forbids it) or be handed a copy of a 400 x 400 x 18-layer state.
 
 #include <cstdint>
 #include <optional>
@@ -12,6 +18,7 @@
 #include "lookout/app/stage.h"
 #include "lookout/core/dead_reckoning.h"
 #include "lookout/grid/extended_grid.h"
+#include "lookout/grid/grid_objects.h"
 #include "lookout/grid/grid_options.h"
 #include "lookout/grid/inverse_sensor_model.h"
 
@@ -19,8 +26,10 @@ namespace lookout::app {
 
 class GridStage : public Stage {
  public:
+  // Validates the options (lookout::InputError).
   explicit GridStage(const grid::GridOptions& grid_options = {},
-                     const grid::FilterOptions& filter_options = {});
+                     const grid::FilterOptions& filter_options = {},
+                     const grid::GridObjectOptions& object_options = {});
 
   void OnOdometry(const EgoOdometry& odometry) override;
   void OnLidar(const LidarScan& scan) override;
@@ -30,17 +39,25 @@ class GridStage : public Stage {
   const std::optional<Pose2>& last_sensor_pose() const { return last_sensor_pose_; }
   // Wall time of each grid cycle (ISM and filter), ms.
   const std::vector<double>& cycle_ms() const { return cycle_ms_; }
+  // The objects of the last cycle (vehicle frame, stamped with its scan); nullopt before the
+  // first cycle.
+  const std::optional<LidarObjectFrame>& last_objects() const { return last_objects_; }
+  // Wall time of each object extraction, ms (not part of cycle_ms).
+  const std::vector<double>& objects_ms() const { return objects_ms_; }
   // Scans that could not be used: no ego pose for their time (odometry missing or stopped).
   std::int64_t skipped_scans() const { return skipped_scans_; }
 
  private:
   grid::GridOptions options_;
+  grid::GridObjectOptions object_options_;
   DeadReckoning ego_;
   grid::ExtendedGrid grid_;
   grid::MeasurementGrid measurement_;
   std::optional<TimeNs> last_stamp_;
   std::optional<Pose2> last_sensor_pose_;
   std::vector<double> cycle_ms_;
+  std::optional<LidarObjectFrame> last_objects_;
+  std::vector<double> objects_ms_;
   std::int64_t skipped_scans_ = 0;
 };
 

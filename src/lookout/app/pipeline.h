@@ -16,7 +16,9 @@
 namespace lookout::app {
 
 struct PipelineOptions {
-  bool grid = true;  // the extended grid (docs/extended-grid.md)
+  bool grid = true;  // the extended grid (docs/extended-grid.md), with its objects
+  // How the grid's rigid clusters become lidar objects (grid/grid_objects.h).
+  grid::GridObjectOptions grid_objects;
 };
 
 class Pipeline {
@@ -30,6 +32,10 @@ class Pipeline {
 
   // The grid stage, or nullptr when the pipeline runs without it.
   const GridStage* grid() const { return grid_; }
+  // The lidar objects of the last cycle (the grid's rigid clusters, vehicle frame), or nullptr
+  // before the first cycle or without the grid. Check its stamp: a scan the grid had to skip
+  // leaves the previous frame here.
+  const LidarObjectFrame* lidar_objects() const;
 
   void OnOdometry(const EgoOdometry& odometry);
   void OnStereo(const StereoFrame& frame);

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include "lookout/app/grid_scoring.h"
+#include "lookout/app/lidar_object_scoring.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/io/grid_images.h"
 #include "lookout/io/png_writer.h"
@@ -38,7 +39,7 @@ std::vector<io::GridLayer8> GridLayersToRecord(const eval::GridBelief& b) {
   speed.reserve(b.occupancy.size());
   for (std::size_t i = 0; i < b.occupancy.size(); ++i) {
     const double o = std::clamp(static_cast<double>(b.occupancy[i]), 0.0, 1.0);
-    const double v = std::hypot(b.velocity_x_mps[i], b.velocity_y_mps[i]);
+    const double v = static_cast<double>(std::hypot(b.velocity_x_mps[i], b.velocity_y_mps[i]));
     occupancy.push_back(static_cast<std::uint8_t>(std::lround(255.0 * o)));
     speed.push_back(static_cast<std::uint8_t>(std::lround(255.0 * std::min(v / 20.0, 1.0))));
   }
@@ -79,9 +80,12 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
 
   // The odometry frame (where the grid lives) is the ego's true pose at the first reading.
   std::optional<GridScorer> grid_scorer;
+  std::optional<LidarObjectScorer> object_scorer;
   if (pipeline.grid()) {
-    grid_scorer.emplace(simulator.ego_trajectory().At(0.0).pose, simulator.static_world(),
+    const Pose2 world_from_odom = simulator.ego_trajectory().At(0.0).pose;
+    grid_scorer.emplace(world_from_odom, simulator.static_world(),
                         scenario.sensors.lidar.max_range_m);
+    object_scorer.emplace(world_from_odom);
   }
   double scoring_s = 0.0;  // not the pipeline's time: excluded from the real-time factor
   bool snapshot_due = options.snapshot_s.has_value() && pipeline.grid() != nullptr;
@@ -132,9 +136,16 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
       const Clock::time_point step_start = Clock::now();
       pipeline.OnLidar(scan);
       step_ms.push_back(1e3 * SecondsSince(step_start));
+      // This scan's objects; none when the grid had to skip it (no ego pose).
+      const LidarObjectFrame* objects = pipeline.lidar_objects();
+      if (objects && objects->stamp != scan.stamp) objects = nullptr;
       if (grid_scorer) {
         const Clock::time_point scoring_start = Clock::now();
         grid_scorer->Observe(*pipeline.grid(), log.truth[k]);
+        if (objects) {
+          object_scorer->Observe(*objects, log.truth[k],
+                                 pipeline.grid()->grid().geometry().WindowGeometry());
+        }
         scoring_s += SecondsSince(scoring_start);
       }
       if (snapshot_due && scan.stamp >= snapshot_at) {
@@ -144,6 +155,7 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
       if (recorder) {
         recorder->Write(scan);
         recorder->Write(log.truth[k]);
+        if (objects) recorder->Write(*objects);
         if (pipeline.grid() && k % kRecordGridEvery == 0) {
           const eval::GridBelief belief = BeliefOf(pipeline.grid()->grid());
           recorder->WriteGrid(scan.stamp, belief.geometry, GridLayersToRecord(belief));
@@ -163,6 +175,11 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   result.metrics.values["timing.pipeline_ms_median"] = eval::Median(step_ms);
   result.metrics.values["timing.realtime_factor"] = scenario.duration_s / result.wall_s;
   if (grid_scorer) grid_scorer->Report(result.metrics.values, *pipeline.grid());
+  if (object_scorer) object_scorer->Report(result.metrics.values);
+  if (pipeline.grid() && !pipeline.grid()->objects_ms().empty()) {
+    result.metrics.values["lidar_objects.extract_ms_median"] =
+        eval::Median(pipeline.grid()->objects_ms());
+  }
   return result;
 }
 

@@ -87,6 +87,12 @@ JsonSchema FoxgloveSceneUpdateSchema() {
                             {"color", Color()},
                             {"colors", ArrayOf(Color())},
                             {"indices", ArrayOf(Integer())}});
+  const json arrow = Object({{"pose", Pose()},
+                             {"shaft_length", Number()},
+                             {"shaft_diameter", Number()},
+                             {"head_length", Number()},
+                             {"head_diameter", Number()},
+                             {"color", Color()}});
   const json text = Object({{"pose", Pose()},
                             {"billboard", Boolean()},
                             {"font_size", Number()},
@@ -99,7 +105,7 @@ JsonSchema FoxgloveSceneUpdateSchema() {
                               {"lifetime", Duration()},
                               {"frame_locked", Boolean()},
                               {"metadata", ArrayOf(Object({{"key", String()}, {"value", String()}}))},
-                              {"arrows", ArrayOf(Object({}))},
+                              {"arrows", ArrayOf(arrow)},
                               {"cubes", ArrayOf(cube)},
                               {"spheres", ArrayOf(Object({}))},
                               {"cylinders", ArrayOf(cylinder)},

@@ -41,6 +41,12 @@ nlohmann::json TruthSceneToJson(const sim::TruthFrame& frame);
 // cylinders. Sent once; the entities have no lifetime.
 nlohmann::json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes);
 
+// foxglove.SceneUpdate drawing lidar objects in `frame_id` (the vehicle frame): the extent as
+// an outline coloured by the most likely class (faint when not dynamic), the front segment in
+// white, the velocity as an arrow, a label "id class", and the object's numbers as metadata.
+// Each update first deletes every entity of the topic (object ids hold within a frame only).
+nlohmann::json LidarObjectsSceneToJson(const LidarObjectFrame& frame, const std::string& frame_id);
+
 // One byte per cell of a grid layer, in GridGeometry order (row 0 at the lowest y).
 struct GridLayer8 {
   std::string name;

@@ -31,6 +31,7 @@ Recorder::Recorder(const std::string& path, McapWriterOptions options)
   truth_scene_ = writer_.AddChannel(scene_id, topics::kTruthScene, "json");
   world_ = writer_.AddChannel(scene_id, topics::kWorldStatic, "json");
   grid_ = AddJsonChannel(writer_, topics::kGridBelief, FoxgloveGridSchema());
+  lidar_objects_ = writer_.AddChannel(scene_id, topics::kLidarObjects, "json");
 }
 
 void Recorder::Emit(std::uint16_t channel, const char* topic, TimeNs t,
@@ -70,6 +71,11 @@ void Recorder::Write(const sim::TruthFrame& truth) {
        PoseInFrameToJson(truth.stamp, frames::kWorld, ego));
   Emit(tf_, topics::kTransforms, truth.stamp,
        FrameTransformToJson(truth.stamp, frames::kWorld, frames::kVehicle, ego));
+}
+
+void Recorder::Write(const LidarObjectFrame& objects) {
+  Emit(lidar_objects_, topics::kLidarObjects, objects.stamp,
+       LidarObjectsSceneToJson(objects, frames::kVehicle));
 }
 
 void Recorder::WriteTransform(TimeNs t, const char* parent, const char* child, const Pose2& pose) {

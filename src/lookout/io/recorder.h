@@ -29,6 +29,7 @@ inline constexpr const char* kTruthActors = "/truth/actors";
 inline constexpr const char* kTruthScene = "/truth/scene";
 inline constexpr const char* kWorldStatic = "/world/static";
 inline constexpr const char* kGridBelief = "/grid/belief";
+inline constexpr const char* kLidarObjects = "/lidar/objects";
 }  // namespace topics
 
 // Frame names (docs/conventions.md).
@@ -59,6 +60,9 @@ class Recorder {
   // The grid's belief as a foxglove.Grid in the odometry frame.
   void WriteGrid(TimeNs t, const GridGeometry& geometry, const std::vector<GridLayer8>& layers);
 
+  // The lidar objects of one cycle as a foxglove.SceneUpdate in the vehicle frame.
+  void Write(const LidarObjectFrame& objects);
+
   // Messages written per topic so far.
   const std::map<std::string, std::uint64_t>& message_counts() const { return counts_; }
 
@@ -70,7 +74,7 @@ class Recorder {
   McapWriter writer_;
   std::map<std::string, std::uint64_t> counts_;
   std::uint16_t lidar_ = 0, stereo_ = 0, odometry_ = 0, tf_ = 0, truth_ego_ = 0,
-                truth_actors_ = 0, truth_scene_ = 0, world_ = 0, grid_ = 0;
+                truth_actors_ = 0, truth_scene_ = 0, world_ = 0, grid_ = 0, lidar_objects_ = 0;
 };
 
 }  // namespace lookout::io
