@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "lookout/core/input_error.h"
+#include "lookout/io/json_schemas.h"
 
 namespace lookout::io {
 namespace {
@@ -104,6 +105,71 @@ TEST(MessageJsonTest, EncodingIsDeterministic) {
   EXPECT_EQ(EgoOdometryToJson(o).dump(), EgoOdometryToJson(o).dump());
   EXPECT_EQ(EgoOdometryToJson(o).dump(),
             R"({"speed":0.1,"timestamp":{"nsec":1,"sec":0},"yaw_rate":0.2})");
+}
+
+TEST(MessageJsonTest, LidarObjectsDrawnAsSceneUpdateInTheVehicleFrame) {
+  LidarObjectFrame frame;
+  frame.stamp = 1'500'000'000;
+  LidarObject moving;
+  moving.id = 0;
+  moving.centroid_m = {10.0, 2.0};
+  moving.length_m = 4.5;
+  moving.width_m = 1.8;
+  moving.velocity_mps = {3.0, 4.0};
+  moving.class_pmf[static_cast<std::size_t>(ObjectClass::kCar)] = 1.0;
+  moving.cell_count = 57;
+  moving.dynamic = true;
+  LidarObject standing = moving;
+  standing.id = 1;
+  standing.velocity_mps = {0.0, 0.0};
+  standing.dynamic = false;
+  frame.objects = {moving, standing};
+  const nlohmann::json j = LidarObjectsSceneToJson(frame, "base_link");
+
+  // Every update first deletes all earlier objects (type 1: all).
+  ASSERT_EQ(j["deletions"].size(), 1u);
+  EXPECT_EQ(j["deletions"][0]["type"], 1);
+  ASSERT_EQ(j["entities"].size(), 2u);
+  const nlohmann::json& e = j["entities"][0];
+  EXPECT_EQ(e["frame_id"], "base_link");
+  EXPECT_EQ(e["id"], "lidar-object-0");
+  EXPECT_EQ(e["timestamp"]["sec"], 1);
+  EXPECT_EQ(e["timestamp"]["nsec"], 500'000'000);
+  // The velocity arrow: 5 m/s drawn 2.5 m long, along (3, 4); none for the standing object.
+  ASSERT_EQ(e["arrows"].size(), 1u);
+  EXPECT_DOUBLE_EQ(e["arrows"][0]["shaft_length"].get<double>() +
+                       e["arrows"][0]["head_length"].get<double>(),
+                   2.5);
+  EXPECT_TRUE(j["entities"][1]["arrows"].empty());
+  // The extent's outline is the 4.5 x 1.8 box about the centroid (yaw 0).
+  const nlohmann::json& ring = e["lines"][0]["points"];
+  ASSERT_EQ(ring.size(), 4u);
+  EXPECT_DOUBLE_EQ(ring[0]["x"].get<double>(), 10.0 - 2.25);
+  EXPECT_DOUBLE_EQ(ring[2]["y"].get<double>(), 2.0 + 0.9);
+  bool found = false;
+  for (const nlohmann::json& m : e["metadata"]) {
+    if (m["key"] == "cell_count") {
+      EXPECT_EQ(m["value"], "57");
+      found = true;
+    }
+    if (m["key"] == "class") {
+      EXPECT_EQ(m["value"], "car");
+    }
+  }
+  EXPECT_TRUE(found);
+
+  // Every primitive's fields are ones the SceneUpdate schema declares.
+  const nlohmann::json schema = nlohmann::json::parse(FoxgloveSceneUpdateSchema().text);
+  const nlohmann::json& entity = schema["properties"]["entities"]["items"]["properties"];
+  for (const char* kind : {"arrows", "lines", "texts"}) {
+    const nlohmann::json& declared = entity[kind]["items"]["properties"];
+    for (const nlohmann::json& primitive : e[kind]) {
+      for (const auto& [key, value] : primitive.items()) {
+        EXPECT_TRUE(declared.contains(key)) << kind << "." << key << " is not in the schema";
+      }
+    }
+  }
+  EXPECT_EQ(j.dump(), LidarObjectsSceneToJson(frame, "base_link").dump());
 }
 
 }  // namespace
