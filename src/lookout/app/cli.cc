@@ -14,6 +14,7 @@
 
 #include "lookout/app/output_files.h"
 #include "lookout/app/runner.h"
+#include "lookout/app/slam_command.h"
 #include "lookout/core/input_error.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/io/scenario_loader.h"
@@ -216,6 +217,17 @@ int RunCli(int argc, char** argv) {
   CLI::App* bench = cli.add_subcommand("bench", "Headline performance figures (JSON)");
   bench->add_option("--json", bench_json, "Write the JSON here instead of stdout");
 
+  SlamCommandOptions slam_options;
+  CLI::App* slam = cli.add_subcommand(
+      "slam", "Lidar localisation and local mapping of a CARMEN log (raw odometry and scans)");
+  slam->add_option("log", slam_options.log_path, "CARMEN log (plain or gzip)")->required();
+  slam->add_option("--trajectory", slam_options.trajectory_path,
+                   "Write the trajectory here: lines 't x y theta', one per odometry reading "
+                   "and one per scan");
+  slam->add_option("--map", slam_options.map_path, "Write the map here as a PNG");
+  slam->add_flag("--odometry-only", slam_options.odometry_only,
+                 "Dead reckoning alone: the baseline that shows what the scans add");
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -228,6 +240,7 @@ int RunCli(int argc, char** argv) {
     if (run->parsed()) return Run(run_scenario, run_out, threads, snapshot_s);
     if (eval_cmd->parsed()) return Eval(eval_scenarios, eval_json, threads);
     if (bench->parsed()) return Bench(bench_json);
+    if (slam->parsed()) return RunSlamCommand(slam_options);
   } catch (const InputError& e) {
     std::cerr << "lookout: " << e.what() << "\n";
     return 2;

@@ -1,0 +1,136 @@
+#include "lookout/app/slam_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "lookout/core/input_error.h"
+#include "lookout/eval/trajectory_error.h"
+#include "lookout/eval/trajectory_io.h"
+
+namespace lookout::app {
+namespace {
+
+// An output file's directory must exist: checked before the run so that a typo costs nothing
+// and leaves nothing behind.
+void CheckOutputPath(const std::string& path, const std::string& flag) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw InputError(path, 0, flag, "its directory does not exist");
+  }
+  if (std::filesystem::is_directory(p, ec)) throw InputError(path, 0, flag, "is a directory");
+}
+
+}  // namespace
+
+std::vector<lidar::SlamRecord> SlamRecordsOf(const io::CarmenLog& log) {
+  std::vector<lidar::SlamRecord> records;
+  records.reserve(log.records.size());
+  for (const io::CarmenRecord& r : log.records) records.push_back({r.t_s, r.odometry, r.scan});
+  return records;
+}
+
+io::Image8 MapImage(const lidar::MapRaster& map) {
+  const int w = std::max(1, map.geometry.width);
+  const int h = std::max(1, map.geometry.height);
+  io::Image8 image = io::Image8::Filled(w, h, io::PixelFormat::kGray8, 128);
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      const double l = static_cast<double>(
+          map.log_odds[static_cast<std::size_t>(map.geometry.LinearIndex({x, y}))]);
+      const double p_occupied = 1.0 / (1.0 + std::exp(-l));
+      // Row 0 of the picture is the map's top (largest y).
+      image.pixels[image.Offset(x, h - 1 - y)] =
+          static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - p_occupied)));
+    }
+  }
+  return image;
+}
+
+int RunSlamCommand(const SlamCommandOptions& options) {
+  CheckOutputPath(options.trajectory_path, "--trajectory");
+  CheckOutputPath(options.map_path, "--map");
+  if (!options.map_path.empty() && std::filesystem::path(options.map_path).extension() != ".png") {
+    throw InputError(options.map_path, 0, "--map", "must name a .png file");
+  }
+  const io::CarmenLog log = io::ReadCarmenLog(options.log_path);
+  if (log.ScanCount() == 0) {
+    throw InputError(options.log_path, 0, "FLASER", "the log holds no laser scan");
+  }
+  const std::vector<lidar::SlamRecord> records = SlamRecordsOf(log);
+
+  // CARMEN logs are robot logs: the differential-drive motion model.
+  lidar::SlamOptions slam_options;
+  slam_options.motion.kind = lidar::MotionModelKind::kDifferentialDrive;
+  // Wall and processor time: on a shared machine the processor time is the figure that says
+  // what one core does (the run is single-threaded).
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  const lidar::SlamResult result = lidar::RunSlam(records, slam_options, options.odometry_only);
+  const double cpu_s =
+      static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  eval::Trajectory2 trajectory;
+  trajectory.reserve(result.trajectory.size());
+  for (const lidar::TrajectoryPoint& p : result.trajectory) trajectory.push_back({p.t_s, p.pose});
+  if (!options.trajectory_path.empty()) eval::WriteTrajectory(options.trajectory_path, trajectory);
+  if (!options.map_path.empty()) io::WritePng(options.map_path, MapImage(result.map));
+
+  // Scoring: the estimate at each scan against the log's reference pose there.
+  std::vector<Pose2> estimate;
+  std::vector<Pose2> reference;
+  std::size_t scan = 0;
+  for (const io::CarmenRecord& r : log.records) {
+    if (!r.scan) continue;
+    if (scan < result.scan_states.size() && r.reference_pose &&
+        result.scan_states[scan].stamp == FromSeconds(r.t_s)) {
+      estimate.push_back(result.scan_states[scan].pose);
+      reference.push_back(*r.reference_pose);
+    }
+    ++scan;
+  }
+
+  const double duration_s = log.records.back().t_s - log.records.front().t_s;
+  std::cout << fmt::format("log         {} ({} records, {} scans, {} lines skipped)\n",
+                           options.log_path, log.records.size(), log.ScanCount(),
+                           log.skipped_lines);
+  std::cout << fmt::format("mode        {}\n", options.odometry_only
+                                                  ? "odometry only (dead reckoning)"
+                                                  : fmt::format("particle filter, {} particles",
+                                                                slam_options.filter.particle_count));
+  std::cout << fmt::format("scans used  {} ({} records refused)\n", result.scans_used,
+                           result.records_refused);
+  std::cout << fmt::format(
+      "wall time   {:.3f} s, processor {:.3f} s (localisation and mapping, log read excluded)\n",
+      wall_s, cpu_s);
+  if (std::isfinite(duration_s) && duration_s > 0.0) {
+    std::cout << fmt::format(
+        "real time   {:.1f}x faster than real time (log {:.1f} s; {:.1f}x by processor time)\n",
+        duration_s / wall_s, duration_s, duration_s / std::max(cpu_s, 1e-9));
+  } else {
+    std::cout << "real time   unknown (the log's times do not span an interval)\n";
+  }
+  if (estimate.size() >= 2) {
+    const eval::AbsoluteTrajectoryError ate = eval::AbsoluteErrorOfPairs(estimate, reference);
+    std::cout << fmt::format(
+        "ate         {:.3f} m RMSE, heading {:.2f} deg RMSE, against the log's reference poses "
+        "({} scans, rigid alignment)\n",
+        ate.ate_rmse_m, RadToDeg(ate.heading_rmse_rad), ate.matched);
+  }
+  if (!options.trajectory_path.empty()) {
+    std::cout << fmt::format("trajectory  {}\n", options.trajectory_path);
+  }
+  if (!options.map_path.empty()) std::cout << fmt::format("map         {}\n", options.map_path);
+  return 0;
+}
+
+}  // namespace lookout::app

@@ -1,0 +1,37 @@
+#pragma once
+
+// `lookout slam LOG [--trajectory FILE] [--map FILE.png] [--odometry-only]`
+// (docs/cli-contract.md): localisation and local mapping of the lidar chain on a recorded
+// CARMEN log. The log's reference poses are read only to score the result (the summary's ATE
+// line); the localisation sees the raw odometry and the scans alone.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lookout/io/carmen_log.h"
+#include "lookout/io/png_writer.h"
+#include "lookout/lidar/local_map.h"
+#include "lookout/lidar/slam.h"
+
+namespace lookout::app {
+
+struct SlamCommandOptions {
+  std::string log_path;
+  std::string trajectory_path;  // empty: not written
+  std::string map_path;         // empty: not written; must end in .png
+  bool odometry_only = false;
+};
+
+// The records the localisation may see: time, raw odometry and scan (no reference pose).
+std::vector<lidar::SlamRecord> SlamRecordsOf(const io::CarmenLog& log);
+
+// The map as a picture: white free, black occupied, grey unknown (gray level 255 (1 - p)),
+// north up, one pixel per cell.
+io::Image8 MapImage(const lidar::MapRaster& map);
+
+// Runs the command: checks every input first (lookout::InputError: nothing is written), then
+// localises, writes the files and prints a summary on stdout. Returns the exit code.
+int RunSlamCommand(const SlamCommandOptions& options);
+
+}  // namespace lookout::app

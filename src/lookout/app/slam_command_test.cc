@@ -1,0 +1,44 @@
+#include "lookout/app/slam_command.h"
+
+#include <gtest/gtest.h>
+
+namespace lookout::app {
+namespace {
+
+TEST(SlamCommand, MapImageIsNorthUpWhiteFreeBlackOccupiedGreyUnknown) {
+  lidar::MapRaster map;
+  map.geometry.width = 3;
+  map.geometry.height = 2;
+  // Bottom row (y = 0): free, unknown, occupied; top row all unknown.
+  map.log_odds = {-5.0f, 0.0f, 5.0f, 0.0f, 0.0f, 0.0f};
+  const io::Image8 image = MapImage(map);
+  ASSERT_EQ(image.width, 3);
+  ASSERT_EQ(image.height, 2);
+  // The picture's last row is the map's bottom row.
+  EXPECT_EQ(image.pixels[image.Offset(0, 1)], 253);  // 255 (1 - 1 / (1 + e^5))
+  EXPECT_EQ(image.pixels[image.Offset(1, 1)], 128);
+  EXPECT_EQ(image.pixels[image.Offset(2, 1)], 2);
+  EXPECT_EQ(image.pixels[image.Offset(2, 0)], 128);
+}
+
+TEST(SlamCommand, RecordsCarryNoReferencePose) {
+  io::CarmenLog log;
+  io::CarmenRecord odometry;
+  odometry.t_s = 1.0;
+  odometry.odometry = Pose2(1.0, 2.0, 0.5);
+  io::CarmenRecord scan;
+  scan.t_s = 2.0;
+  scan.odometry = Pose2(3.0, 2.0, 0.5);
+  scan.scan = LidarScan{};
+  scan.reference_pose = Pose2(100.0, 100.0, 1.0);
+  log.records = {odometry, scan};
+  const std::vector<lidar::SlamRecord> records = SlamRecordsOf(log);
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[0].t_s, 1.0);
+  EXPECT_FALSE(records[0].scan.has_value());
+  EXPECT_EQ(records[1].odometry.x(), 3.0);  // the raw odometry, not the reference
+  EXPECT_TRUE(records[1].scan.has_value());
+}
+
+}  // namespace
+}  // namespace lookout::app
