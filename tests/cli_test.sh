@@ -21,6 +21,19 @@ case "$case_name" in
     done
     ls "$work/out" | grep -q '\.part$' && fail "a .part file was left behind"
     ;;
+  bench)
+    # Every bench key of docs/cli-contract.md that has a stage behind it, a positive number.
+    "$lookout" bench --json "$work/bench.json" 2>/dev/null >/dev/null
+    node -e '
+      const b = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
+      for (const key of ["sim.realtime_factor", "grid.cycle_ms_median", "grid.reference_speedup",
+                         "risk.step_ms_median", "pipeline.realtime_factor"]) {
+        if (!(typeof b[key] === "number" && b[key] > 0)) { console.error(`${key}: ${b[key]}`); process.exit(1); }
+      }
+      // The fast path must beat the literal reference it is measured against.
+      if (!(b["grid.reference_speedup"] > 1)) { console.error("no speed-up"); process.exit(1); }
+    ' "$work/bench.json" || fail "bench keys"
+    ;;
   deterministic)
     "$lookout" run --out "$work/a" --threads 1 >/dev/null
     "$lookout" run --out "$work/b" --threads 2 >/dev/null

@@ -15,6 +15,7 @@
 #include "lookout/app/output_files.h"
 #include "lookout/app/runner.h"
 #include "lookout/app/slam_command.h"
+#include "lookout/app/stage_benchmarks.h"
 #include "lookout/core/input_error.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/io/scenario_loader.h"
@@ -177,7 +178,13 @@ double PipelineRealtimeFactor() {
 }
 
 int Bench(const std::string& json_path) {
+  // The grid on the default scenario's junction at t = 4 s (the oncoming car turning in front
+  // of the ego, which has driven 44 m: tracked structure and newly revealed occupancy).
+  const GridCycleFigures grid = MeasureGridCycle(io::LoadDefaultScenario(), 4.0, 15, 3);
   const json figures = {{"sim.realtime_factor", SimRealtimeFactor()},
+                        {"grid.cycle_ms_median", grid.cycle_ms_median},
+                        {"grid.reference_speedup", grid.reference_speedup},
+                        {"risk.step_ms_median", MeasureRiskStepMs(30, 1000, 21)},
                         {"pipeline.realtime_factor", PipelineRealtimeFactor()}};
   for (const auto& [key, value] : figures.items()) {
     std::cerr << fmt::format("{:<28} {}\n", key, value.dump());

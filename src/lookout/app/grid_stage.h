@@ -37,6 +37,8 @@ class GridStage : public Stage {
   const grid::ExtendedGrid& grid() const { return grid_; }
   // The lidar's pose in the odometry frame at the last cycle; nullopt before the first.
   const std::optional<Pose2>& last_sensor_pose() const { return last_sensor_pose_; }
+  // The measurement grid of the last cycle, in the grid's window of that cycle.
+  const grid::MeasurementGrid& last_measurement() const { return measurement_; }
   // Wall time of each grid cycle (ISM and filter), ms.
   const std::vector<double>& cycle_ms() const { return cycle_ms_; }
   // The objects of the last cycle (vehicle frame, stamped with its scan); nullopt before the

@@ -1,7 +1,7 @@
 #pragma once
 
 // A slow literal reference of the extended grid's steps 2-7 (docs/extended-grid.md), for tests
-// only: the equations as they read, in double precision, scatter-based (each source pushes its
+// and for measuring the fast path's speed-up (`lookout bench`), never in the pipeline: the equations as they read, in double precision, scatter-based (each source pushes its
 // contributions into dense accumulators), no active-set bookkeeping, no target index, and the
 // literal O(M^6) rigidity term of eq. 11 (every move of every neighbour for every move of the
 // cell). It shares with the fast path only the window choice (SearchWindowFor: a design choice,

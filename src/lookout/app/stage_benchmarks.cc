@@ -1,0 +1,120 @@
+#include "lookout/app/stage_benchmarks.h"
+
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "lookout/app/grid_stage.h"
+#include "lookout/core/random.h"
+#include "lookout/eval/statistics.h"
+#include "lookout/grid/reference_filter.h"
+#include "lookout/risk/risk_assessment.h"
+#include "lookout/sim/simulator.h"
+
+namespace lookout::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, int repetitions,
+                                  int reference_repetitions) {
+  const sim::Simulator simulator(scenario);
+  const sim::SensorLog log = simulator.Run(1);
+  GridStage stage;
+  std::size_t next_odometry = 0;
+  std::optional<std::size_t> timed;
+  for (std::size_t k = 0; k < log.lidar.size(); ++k) {
+    while (next_odometry < log.odometry.size() &&
+           log.odometry[next_odometry].stamp <= log.lidar[k].stamp) {
+      stage.OnOdometry(log.odometry[next_odometry++]);
+    }
+    if (k > 0 && ToSeconds(log.lidar[k].stamp) >= at_s && stage.last_sensor_pose()) {
+      timed = k;
+      break;
+    }
+    stage.OnLidar(log.lidar[k]);
+  }
+  if (!timed) throw std::invalid_argument("MeasureGridCycle: no lidar frame after at_s");
+  const std::size_t k = *timed;
+  const GridStage before = stage;  // the state the timed update starts from
+  stage.OnLidar(log.lidar[k]);     // computes the measurement in this cycle's window
+  const grid::MeasurementGrid& z = stage.last_measurement();
+  const double dt_s = ToSeconds(log.lidar[k].stamp - log.lidar[k - 1].stamp);
+  // The window of the measurement: recentre a copy on the centre cell of z's window.
+  const grid::ScrollingGridGeometry& zg = z.geometry;
+  const CellIndex centre{zg.window_origin().ix + zg.width() / 2,
+                         zg.window_origin().iy + zg.height() / 2};
+  auto fresh_copy = [&] {
+    grid::ExtendedGrid g = before.grid();
+    g.Recenter(zg.CellCenterM(centre));
+    assert(g.geometry().window_origin() == zg.window_origin());
+    return g;
+  };
+
+  GridCycleFigures out;
+  std::vector<double> fast_ms, reference_ms;
+  for (int r = 0; r < repetitions; ++r) {
+    grid::ExtendedGrid g = fresh_copy();
+    const Clock::time_point start = Clock::now();
+    g.Update(z, dt_s);
+    fast_ms.push_back(MsSince(start));
+    out.sources = g.last_stats().sources;
+  }
+  for (int r = 0; r < reference_repetitions; ++r) {
+    grid::ExtendedGrid g = fresh_copy();
+    const Clock::time_point start = Clock::now();
+    grid::ReferenceUpdate(g.mutable_layers(), g.ids(), z, dt_s, g.options());
+    reference_ms.push_back(MsSince(start));
+  }
+  out.cycle_ms_median = eval::Median(fast_ms);
+  out.reference_ms_median = eval::Median(reference_ms);
+  out.reference_speedup = out.reference_ms_median / out.cycle_ms_median;
+  return out;
+}
+
+double MeasureRiskStepMs(int tracks, int samples, int repetitions) {
+  // The scene of bench/risk_bench.cc: cars, cyclists and pedestrians round a junction.
+  Rng rng(20261122);
+  std::vector<risk::ObjectInput> objects;
+  for (int i = 0; i < tracks; ++i) {
+    risk::ObjectInput o;
+    o.id = static_cast<std::uint32_t>(i);
+    const int kind = i % 3;
+    o.object_class = kind == 0 ? ObjectClass::kCar
+                     : kind == 1 ? ObjectClass::kCyclist
+                                 : ObjectClass::kPedestrian;
+    const double heading = rng.Uniform(-3.14159, 3.14159);
+    const double speed = kind == 0 ? rng.Uniform(5.0, 15.0) : kind == 1 ? rng.Uniform(3.0, 7.0)
+                                                                         : rng.Uniform(0.5, 2.0);
+    o.position_m = {rng.Uniform(-5.0, 60.0), rng.Uniform(-20.0, 20.0)};
+    o.velocity_mps = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+    o.position_covariance = Eigen::Matrix2d::Identity() * rng.Uniform(0.01, 0.5);
+    o.velocity_covariance = Eigen::Matrix2d::Identity() * rng.Uniform(0.01, 1.0);
+    objects.push_back(o);
+  }
+  risk::RiskOptions options;
+  options.collision_samples = samples;
+  risk::EgoInput ego;
+  ego.speed_mps = 11.1;
+  ego.yaw_rate_radps = 0.05;
+  std::vector<double> ms;
+  double sink = 0.0;
+  for (int r = 0; r < repetitions; ++r) {
+    const Clock::time_point start = Clock::now();
+    const risk::RiskAssessment a = risk::AssessRisk(ego, objects, options);
+    ms.push_back(MsSince(start));
+    sink += a.risk;
+  }
+  if (!std::isfinite(sink)) throw std::logic_error("risk step gave a non-finite risk");
+  return eval::Median(ms);
+}
+
+}  // namespace lookout::app

@@ -1,0 +1,31 @@
+#pragma once
+
+// The figures of `lookout bench` that time one stage on a fixed input (the issues' benchmark
+// set-ups, measured in-process so that the command needs nothing but the binary; the Google
+// Benchmark programs in bench/ give the same measurements with their statistics).
+
+#include <cstddef>
+
+#include "lookout/sim/scenario.h"
+
+namespace lookout::app {
+
+struct GridCycleFigures {
+  double cycle_ms_median = 0.0;      // ExtendedGrid::Update, steps 2-8
+  double reference_ms_median = 0.0;  // the literal reference of steps 2-7, same input
+  double reference_speedup = 0.0;    // reference over fast path
+  std::size_t sources = 0;           // active cells moved in the timed update
+};
+
+// One grid update on `scenario`'s scan at the first lidar frame at or after `at_s`, the grid
+// having run every earlier scan (a steady state: tracked structure, movers, newly revealed
+// occupancy), the 400 x 400 grid of 0.15 m cells. Each repetition updates a fresh copy of the
+// same state with the same measurement; copying is not timed.
+GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, int repetitions,
+                                  int reference_repetitions);
+
+// One risk step: the ego and `tracks` seeded road users round a junction, 5 s horizon, `samples`
+// Monte Carlo samples each; the median over `repetitions`, ms.
+double MeasureRiskStepMs(int tracks, int samples, int repetitions);
+
+}  // namespace lookout::app
