@@ -6,7 +6,7 @@
 
 #include "lookout/assignment/linear_assignment.h"
 #include "lookout/core/input_error.h"
-#include "lookout/tracking/chi_square.h"
+#include "lookout/core/chi_square.h"
 #include "lookout/tracking/motion_models.h"
 
 namespace lookout::tracking {

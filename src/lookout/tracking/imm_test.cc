@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "lookout/core/input_error.h"
-#include "lookout/tracking/chi_square.h"
+#include "lookout/core/chi_square.h"
 #include "lookout/tracking/simulation_test_support.h"
 
 namespace lookout::tracking {

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "lookout/core/input_error.h"
-#include "lookout/tracking/chi_square.h"
+#include "lookout/core/chi_square.h"
 
 namespace lookout::tracking {
 

@@ -1,10 +1,10 @@
-#include "lookout/tracking/chi_square.h"
+#include "lookout/core/chi_square.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-namespace lookout::tracking {
+namespace lookout {
 namespace {
 
 // Published table values (Abramowitz and Stegun, table 26.8; NIST/SEMATECH e-Handbook 1.3.6.7.4).
@@ -27,4 +27,4 @@ TEST(ChiSquare, TwoDegreesOfFreedomIsExponential) {
 }
 
 }  // namespace
-}  // namespace lookout::tracking
+}  // namespace lookout
