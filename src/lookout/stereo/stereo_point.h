@@ -1,0 +1,77 @@
+#pragma once
+
+// Seed 004 section V.C: a stereo object projected onto the laser plane and into the vehicle
+// frame, reduced to the middle of its front line segment, and given as range and bearing from
+// the lidar's origin: the point fusion works with.
+
+#include <cstdint>
+#include <optional>
+#include <variant>
+#include <vector>
+
+#include "lookout/core/messages.h"
+#include "lookout/core/object_class.h"
+#include "lookout/core/pose2.h"
+#include "lookout/core/time.h"
+#include "lookout/stereo/oriented_box.h"
+#include "lookout/stereo/range_bearing.h"
+#include "lookout/stereo/stereo_options.h"
+#include "lookout/stereo/stereo_validation.h"
+
+namespace lookout::stereo {
+
+struct StereoPoint {
+  std::uint32_t id = 0;  // the camera's track id
+  ObjectClass object_class = ObjectClass::kUnknown;
+  std::uint32_t history = 0;  // frames the camera has tracked it
+  OrientedBox footprint;      // vehicle frame
+  // Over the ground, in vehicle axes (the camera reports it in its own axes).
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Identity();
+  FrontSegment front;     // vehicle frame, the side facing the lidar origin
+  // The object's point, vehicle frame: ExpectedFrontPoint, which is front.midpoint_m except
+  // near a corner view.
+  CartesianPoint point;
+  RangeBearing polar;     // the same point from the lidar origin, in the lidar frame
+  double depth_m = 0.0;   // of the centre, along the camera's axis
+};
+
+// The expected front point of a box whose centre and heading are uncertain (vehicle frame;
+// centre covariance `center_covariance`, heading variance `yaw_variance`), seen from
+// `viewpoint_m`. Far from a corner view it is FrontSegmentFacing's midpoint m with covariance
+//     P = C + sigma_yaw^2 (dm/dyaw) (dm/dyaw)^T
+// (centre and heading errors independent, as the camera reports no cross term). Near a corner
+// view a small error may have picked the wrong side, whose middle lies up to half a diagonal
+// away: the test g = W |u_x| - L |u_y| that picks the side (u the viewpoint in box axes) is
+// linearised, q = Phi(-|g| / sigma_g) is the probability that the other side faces the
+// viewpoint, and the point is the moments of the two-sided mixture:
+//     mean = (1 - q) m_a + q m_b,  cov = (1 - q) P_a + q P_b + q (1 - q) (m_b - m_a)(m_b - m_a)^T
+// the least-squares estimate of the true side's middle, with a covariance that is honest
+// about the ambiguity. nullopt when the viewpoint is inside the box.
+std::optional<CartesianPoint> ExpectedFrontPoint(const OrientedBox& box,
+                                                 const Eigen::Matrix2d& center_covariance,
+                                                 double yaw_variance,
+                                                 const Eigen::Vector2d& viewpoint_m);
+
+// The object's point and its covariance in the vehicle frame (ExpectedFrontPoint, the centre's
+// covariance rotated from the camera frame into the vehicle frame), then its range and bearing
+// from the lidar origin, the covariance carried over by the Jacobian.
+// Returns why the object was dropped when it cannot be used (CheckStereoObject, or the lidar
+// origin inside its footprint).
+std::variant<StereoPoint, DropReason> ProjectStereoObject(const StereoObject& object,
+                                                          const Pose2& camera_mount,
+                                                          const Pose2& lidar_mount,
+                                                          const StereoObjectOptions& options);
+
+struct ProjectedStereoFrame {
+  TimeNs stamp = 0;
+  std::vector<StereoPoint> objects;  // in the frame's order, the dropped ones left out
+  std::vector<Drop> drops;
+};
+
+// Every object of `frame` (camera mount frame.mount) projected for a lidar at `lidar_mount`
+// (vehicle frame). Pure.
+ProjectedStereoFrame ProjectStereoFrame(const StereoFrame& frame, const Pose2& lidar_mount,
+                                        const StereoObjectOptions& options);
+
+}  // namespace lookout::stereo
