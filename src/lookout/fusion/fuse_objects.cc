@@ -1,0 +1,151 @@
+#include "lookout/fusion/fuse_objects.h"
+
+#include <optional>
+
+#include "lookout/core/chi_square.h"
+#include "lookout/fusion/association.h"
+#include "lookout/fusion/gate.h"
+#include "lookout/fusion/gaussian_fusion.h"
+#include "lookout/stereo/stereo_validation.h"
+
+namespace lookout::fusion {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+
+bool UsableLidarObject(const LidarObject& o) {
+  return o.point_m.allFinite() && stereo::IsPositiveDefinite(o.point_covariance) &&
+         o.velocity_mps.allFinite() && o.velocity_covariance.allFinite();
+}
+
+Gaussian2 FusedVelocity(const LidarObject& lidar, const stereo::StereoPoint& stereo,
+                        VelocitySource source) {
+  const Gaussian2 from_lidar{lidar.velocity_mps, lidar.velocity_covariance};
+  const Gaussian2 from_stereo{stereo.velocity_mps, stereo.velocity_covariance};
+  // A lidar velocity without a proper covariance (a cluster born this scan) has no weight.
+  const bool lidar_usable = stereo::IsPositiveDefinite(lidar.velocity_covariance);
+  switch (source) {
+    case VelocitySource::kLidar: return from_lidar;
+    case VelocitySource::kStereo: return from_stereo;
+    case VelocitySource::kInformationWeighted:
+      return lidar_usable ? FuseGaussians(from_lidar, from_stereo) : from_stereo;
+  }
+  return from_stereo;
+}
+
+}  // namespace
+
+std::array<double, kAllObjectClasses.size()> StereoClassPmf(ObjectClass reported,
+                                                            double confidence) {
+  std::array<double, kAllObjectClasses.size()> pmf{};
+  const double other = (1.0 - confidence) / static_cast<double>(kAllObjectClasses.size() - 1);
+  for (std::size_t i = 0; i < pmf.size(); ++i) {
+    pmf[i] = kAllObjectClasses[i] == reported ? confidence : other;
+  }
+  return pmf;
+}
+
+bool IsSignificantlyMoving(const Vector2d& velocity_mps, const Matrix2d& covariance,
+                           double min_speed_mps, double probability) {
+  if (velocity_mps.norm() < min_speed_mps) return false;
+  if (!stereo::IsPositiveDefinite(covariance)) return true;  // exact: the speed test decides
+  return MahalanobisSquared(velocity_mps, covariance) >= ChiSquareQuantile(probability, 2.0);
+}
+
+FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
+                              std::span<const stereo::StereoPoint> stereo,
+                              const FusionOptions& options) {
+  FuseObjectsResult result;
+  result.frame.stamp = lidar.stamp;
+  result.frame.mount = lidar.mount;
+  result.frame.ego_pose = lidar.ego_pose;
+
+  std::vector<const LidarObject*> lidar_objects;
+  std::vector<stereo::CartesianPoint> lidar_points;
+  for (const LidarObject& o : lidar.objects) {
+    if (!UsableLidarObject(o)) {
+      result.dropped_lidar_ids.push_back(o.id);
+      continue;
+    }
+    lidar_objects.push_back(&o);
+    lidar_points.push_back({o.point_m, o.point_covariance});
+  }
+  // The stereo points as the paper hands them over, range and bearing from the lidar origin,
+  // carried to Cartesian with the Jacobian.
+  std::vector<stereo::CartesianPoint> stereo_points;
+  stereo_points.reserve(stereo.size());
+  for (const stereo::StereoPoint& s : stereo) {
+    stereo_points.push_back(stereo::ToCartesian(s.polar, lidar.mount));
+  }
+
+  const AssociationGate gate(options);
+  const std::vector<AssociationPair> pairs =
+      AssociateStereoToLidar(stereo_points, lidar_points, gate);
+  result.pairs = pairs.size();
+  std::vector<std::optional<std::size_t>> stereo_of_lidar(lidar_objects.size());
+  std::vector<bool> stereo_taken(stereo.size(), false);
+  for (const AssociationPair& pair : pairs) {
+    stereo_of_lidar[pair.lidar] = pair.stereo;
+    stereo_taken[pair.stereo] = true;
+  }
+
+  auto next_id = [&result] { return static_cast<std::uint32_t>(result.frame.objects.size()); };
+  for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
+    const LidarObject& l = *lidar_objects[j];
+    FusedObject f;
+    f.id = next_id();
+    f.lidar_id = l.id;
+    f.front_start_m = l.front_start_m;
+    f.front_end_m = l.front_end_m;
+    if (const auto i = stereo_of_lidar[j]) {
+      const stereo::StereoPoint& s = stereo[*i];
+      const Gaussian2 position = FuseGaussians(
+          Gaussian2{lidar_points[j].point_m, lidar_points[j].covariance},
+          Gaussian2{stereo_points[*i].point_m, stereo_points[*i].covariance});
+      f.point_m = position.mean;
+      f.point_covariance = position.covariance;
+      const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);
+      f.velocity_mps = velocity.mean;
+      f.velocity_covariance = velocity.covariance;
+      f.class_pmf = StereoClassPmf(s.object_class, options.stereo_class_confidence);
+      f.dynamic = l.dynamic ||
+                  IsSignificantlyMoving(f.velocity_mps, f.velocity_covariance,
+                                        options.dynamic_speed_mps, options.dynamic_probability);
+      f.sensor_count = 2;
+      f.stereo_id = s.id;
+    } else {
+      f.point_m = l.point_m;
+      f.point_covariance = l.point_covariance;
+      f.velocity_mps = l.velocity_mps;
+      f.velocity_covariance = l.velocity_covariance;
+      f.class_pmf = l.class_pmf;
+      f.dynamic = l.dynamic;
+      f.sensor_count = 1;
+    }
+    result.frame.objects.push_back(f);
+  }
+  // Seed 004 VI.B: unpaired stereo objects are kept, "because they may correspond to dynamic
+  // objects which may not have been detected by laser" (occluded, or transparent to it).
+  for (std::size_t i = 0; i < stereo.size(); ++i) {
+    if (stereo_taken[i]) continue;
+    const stereo::StereoPoint& s = stereo[i];
+    FusedObject f;
+    f.id = next_id();
+    f.stereo_id = s.id;
+    f.point_m = stereo_points[i].point_m;
+    f.point_covariance = stereo_points[i].covariance;
+    f.velocity_mps = s.velocity_mps;
+    f.velocity_covariance = s.velocity_covariance;
+    f.front_start_m = s.front.start_m;
+    f.front_end_m = s.front.end_m;
+    f.class_pmf = StereoClassPmf(s.object_class, options.stereo_class_confidence);
+    f.dynamic = IsSignificantlyMoving(s.velocity_mps, s.velocity_covariance,
+                                      options.dynamic_speed_mps, options.dynamic_probability);
+    f.sensor_count = 1;
+    result.frame.objects.push_back(f);
+  }
+  return result;
+}
+
+}  // namespace lookout::fusion

@@ -1,0 +1,154 @@
+#include "lookout/fusion/fuse_objects.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <variant>
+
+#include "lookout/fusion/gaussian_fusion.h"
+
+namespace lookout::fusion {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+
+const Pose2 kCameraMount(0.8, 0.0, 0.0);
+const Pose2 kLidarMount(2.2, 0.0, 0.0);
+
+LidarObject MakeLidar(std::uint32_t id, const Vector2d& point, bool dynamic = true) {
+  LidarObject o;
+  o.id = id;
+  o.point_m = point;
+  o.point_covariance = Vector2d(0.01, 0.04).asDiagonal();
+  o.front_start_m = point + Vector2d(0, -0.9);
+  o.front_end_m = point + Vector2d(0, 0.9);
+  o.velocity_mps = Vector2d(4.0, 0.0);
+  o.velocity_covariance = 0.25 * Matrix2d::Identity();
+  o.class_pmf = {0.0, 0.0, 0.0, 1.0, 0.0, 0.0};  // car
+  o.dynamic = dynamic;
+  return o;
+}
+
+// A stereo pedestrian (0.6 m square) whose front point lies at `front` in the vehicle frame.
+stereo::StereoPoint MakeStereo(std::uint32_t id, const Vector2d& front) {
+  StereoObject o;
+  o.id = id;
+  o.object_class = ObjectClass::kPedestrian;
+  o.center_m = kCameraMount.Inverse() * (front + Vector2d(0.3, 0.0));
+  o.length_m = 0.6;
+  o.width_m = 0.6;
+  o.speed_longitudinal_mps = 0.0;
+  o.speed_lateral_mps = 1.5;
+  o.center_covariance = Vector2d(0.09, 0.0025).asDiagonal();
+  o.yaw_variance = 0.0;
+  o.speed_variance = 0.04;
+  auto result = stereo::ProjectStereoObject(o, kCameraMount, kLidarMount, {});
+  return std::get<stereo::StereoPoint>(result);
+}
+
+LidarObjectFrame Frame(std::vector<LidarObject> objects) {
+  LidarObjectFrame frame;
+  frame.stamp = 800'000'000;
+  frame.mount = kLidarMount;
+  frame.ego_pose = Pose2(5.0, 1.0, 0.1);
+  frame.objects = std::move(objects);
+  return frame;
+}
+
+TEST(FuseObjectsTest, PairIsFusedByCovariances) {
+  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, {});
+  ASSERT_EQ(result.frame.objects.size(), 1u);
+  EXPECT_EQ(result.pairs, 1u);
+  const FusedObject& f = result.frame.objects[0];
+  EXPECT_EQ(f.sensor_count, 2);
+  EXPECT_EQ(f.lidar_id, 7u);
+  EXPECT_EQ(f.stereo_id, 3u);
+  const Gaussian2 expected = FuseGaussians(
+      {lidar.objects[0].point_m, lidar.objects[0].point_covariance},
+      {stereo[0].point.point_m, stereo[0].point.covariance});
+  EXPECT_LT((f.point_m - expected.mean).norm(), 1e-9);
+  EXPECT_LT((f.point_covariance - expected.covariance).norm(), 1e-9);
+  // x: lidar 0.01 against stereo 0.09 -> 0.9 of the way to the lidar's 15.2.
+  EXPECT_NEAR(f.point_m.x(), 15.18, 1e-9);
+  // Class from the camera (pedestrian, 0.9), velocity weighted: lidar (4, 0) var 0.25 and
+  // stereo (0, 1.5) var 0.04.
+  EXPECT_NEAR(f.class_pmf[static_cast<std::size_t>(ObjectClass::kPedestrian)], 0.9, 1e-15);
+  EXPECT_NEAR(f.class_pmf[static_cast<std::size_t>(ObjectClass::kCar)], 0.02, 1e-15);
+  EXPECT_NEAR(f.velocity_mps.x(), 4.0 * 0.04 / 0.29, 1e-9);
+  EXPECT_NEAR(f.velocity_mps.y(), 1.5 * 0.25 / 0.29, 1e-9);
+  EXPECT_TRUE(f.dynamic);
+  EXPECT_EQ(result.frame.stamp, lidar.stamp);
+  EXPECT_EQ(result.frame.ego_pose.yaw, 0.1);
+}
+
+TEST(FuseObjectsTest, ObjectsSeenByOneSensorAreKept) {
+  // A lidar object with no stereo partner, a stereo object far from any lidar object.
+  const LidarObjectFrame lidar = Frame({MakeLidar(1, Vector2d(15.0, 5.0), false)});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(2, Vector2d(12.0, -3.0))};
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, {});
+  ASSERT_EQ(result.frame.objects.size(), 2u);
+  EXPECT_EQ(result.pairs, 0u);
+  const FusedObject& l = result.frame.objects[0];
+  EXPECT_EQ(l.sensor_count, 1);
+  EXPECT_EQ(l.lidar_id, 1u);
+  EXPECT_FALSE(l.stereo_id.has_value());
+  EXPECT_EQ(l.point_m, lidar.objects[0].point_m);
+  EXPECT_EQ(l.class_pmf, lidar.objects[0].class_pmf);  // the lidar's class without a camera
+  EXPECT_FALSE(l.dynamic);
+  const FusedObject& s = result.frame.objects[1];
+  EXPECT_EQ(s.sensor_count, 1);
+  EXPECT_EQ(s.stereo_id, 2u);
+  EXPECT_FALSE(s.lidar_id.has_value());
+  EXPECT_LT((s.point_m - Vector2d(12.0, -3.0)).norm(), 1e-9);
+  EXPECT_LT((s.point_covariance - stereo[0].point.covariance).norm(), 1e-12);
+  EXPECT_TRUE(s.dynamic);  // 1.5 m/s against sigma 0.2
+  EXPECT_EQ(s.id, 1u);
+}
+
+TEST(FuseObjectsTest, VelocitySourceOption) {
+  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  FusionOptions options;
+  options.velocity_source = VelocitySource::kLidar;
+  EXPECT_EQ(FuseObjects(lidar, stereo, options).frame.objects[0].velocity_mps,
+            Vector2d(4.0, 0.0));
+  options.velocity_source = VelocitySource::kStereo;
+  EXPECT_LT((FuseObjects(lidar, stereo, options).frame.objects[0].velocity_mps -
+             Vector2d(0.0, 1.5))
+                .norm(),
+            1e-12);
+}
+
+TEST(FuseObjectsTest, UnusableLidarObjectsAreDroppedAndCounted) {
+  LidarObject nan_point = MakeLidar(5, Vector2d(10, 0));
+  nan_point.point_m.x() = std::numeric_limits<double>::quiet_NaN();
+  LidarObject singular = MakeLidar(6, Vector2d(10, 0));
+  singular.point_covariance = Matrix2d::Zero();
+  const LidarObjectFrame lidar = Frame({nan_point, MakeLidar(4, Vector2d(20, 0)), singular});
+  const FuseObjectsResult result = FuseObjects(lidar, {}, {});
+  ASSERT_EQ(result.frame.objects.size(), 1u);
+  EXPECT_EQ(result.frame.objects[0].lidar_id, 4u);
+  EXPECT_EQ(result.dropped_lidar_ids, (std::vector<std::uint32_t>{5, 6}));
+}
+
+TEST(FuseObjectsTest, StereoClassPmfSumsToOne) {
+  const auto pmf = StereoClassPmf(ObjectClass::kPole, 0.7);
+  double sum = 0.0;
+  for (const double p : pmf) sum += p;
+  EXPECT_NEAR(sum, 1.0, 1e-15);
+  EXPECT_EQ(pmf[static_cast<std::size_t>(ObjectClass::kPole)], 0.7);
+}
+
+TEST(FuseObjectsTest, MovingNeedsSpeedAndSignificance) {
+  const Matrix2d c = 0.09 * Matrix2d::Identity();  // sigma 0.3 m/s
+  EXPECT_FALSE(IsSignificantlyMoving(Vector2d(0.4, 0.0), c, 0.5, 0.99));  // too slow
+  EXPECT_FALSE(IsSignificantlyMoving(Vector2d(0.8, 0.0), c, 0.5, 0.99));  // d2 7.1 < 9.21
+  EXPECT_TRUE(IsSignificantlyMoving(Vector2d(1.0, 0.0), c, 0.5, 0.99));   // d2 11.1
+}
+
+}  // namespace
+}  // namespace lookout::fusion

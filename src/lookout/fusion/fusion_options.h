@@ -1,0 +1,58 @@
+#pragma once
+
+// Options of the fusion stage (seed 004 section VI), one struct, units in the names.
+
+#include "lookout/stereo/stereo_options.h"
+
+namespace lookout::fusion {
+
+// Where a fused object's velocity comes from when both sensors saw it.
+enum class VelocitySource {
+  // Both, weighted by their covariances (the same formula as the positions): both sensors
+  // measure the velocity over the ground, the camera from 6D optical flow in one frame
+  // (0.3 m/s near, 0.8 m/s at 35 m), the grid from many scans; the covariances say which is
+  // better for this object, and the weighted mean is never worse than either in expectation.
+  kInformationWeighted,
+  kLidar,   // the lidar object's alone
+  kStereo,  // the camera's alone
+};
+
+struct FusionOptions {
+  stereo::StereoObjectOptions stereo;
+
+  // Association gate (docs/fusion.md): a stereo and a lidar point may pair when their
+  // Mahalanobis distance under S = R_L + R_V(z) + sigma_def^2 I is within the chi-square
+  // (2 dof) quantile of gate_probability. R_V(z) grows with the stereo depth, so the gate does.
+  double gate_probability = 0.99;
+  // The two sensors' points are not the same point exactly (the lidar's front segment is
+  // what the scan saw of the outline, the camera's the middle of its box's side): this much
+  // disagreement (m, each axis) is allowed for in the gate. Not in the fused covariance.
+  double point_definition_sigma_m = 0.25;
+
+  // Time offset: the latest stereo frame is predicted to the lidar stamp with its speeds. A
+  // frame further than this from the lidar stamp (either way) is not used: at 20 Hz the latest
+  // one is at most 50 ms old.
+  double max_stereo_age_s = 0.1;
+  // White-noise acceleration of the prediction: the covariance grows by
+  // (acceleration_sigma dt^2 / 2)^2 per axis for the position, (acceleration_sigma dt)^2 for
+  // the velocity. 3 m/s^2 covers braking and a pedestrian's start.
+  double acceleration_sigma_mps2 = 3.0;
+
+  VelocitySource velocity_source = VelocitySource::kInformationWeighted;
+
+  // A stereo class becomes a pmf: the reported class with this probability, the rest spread
+  // evenly over the other five (the camera's confusion model; the simulator's class_accuracy).
+  double stereo_class_confidence = 0.9;
+
+  // An object whose velocity comes from the camera (alone or fused) is dynamic when its speed
+  // is at least dynamic_speed_mps and significantly above zero: v^T C^-1 v beyond the
+  // chi-square (2 dof) quantile of dynamic_probability. A lidar object's own flag (the grid's,
+  // from many scans) counts too.
+  double dynamic_speed_mps = 0.5;
+  double dynamic_probability = 0.99;
+
+  // Throws std::invalid_argument naming the first field out of range.
+  void Validate() const;
+};
+
+}  // namespace lookout::fusion

@@ -1,0 +1,26 @@
+#pragma once
+
+// Seed 004 VI.B, Bayesian fusion of two position measurements of one object, in matrix form.
+// The paper writes, for laser P_L, R_L and vision P_V, R_V:
+//     1/R = 1/R_L + 1/R_V,      P = (P_L/R_L + P_V/R_V) / (1/R_L + 1/R_V)
+// which for matrices is the information-weighted mean:
+//     R = (R_L^-1 + R_V^-1)^-1,  P = R (R_L^-1 P_L + R_V^-1 P_V)
+// the product of the two Gaussian likelihoods, renormalised. Both errors are taken as
+// independent (two sensors, separate processing).
+
+#include <Eigen/Core>
+
+namespace lookout::fusion {
+
+struct Gaussian2 {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
+};
+
+// Both covariances must be symmetric positive definite.
+Gaussian2 FuseGaussians(const Gaussian2& a, const Gaussian2& b);
+
+// The squared Mahalanobis distance of `difference` under `covariance` (positive definite).
+double MahalanobisSquared(const Eigen::Vector2d& difference, const Eigen::Matrix2d& covariance);
+
+}  // namespace lookout::fusion
