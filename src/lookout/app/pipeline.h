@@ -7,11 +7,13 @@
 // times that whole step.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
 #include "lookout/app/stage.h"
 #include "lookout/core/messages.h"
+#include "lookout/fusion/fusion_engine.h"
 
 namespace lookout::app {
 
@@ -19,6 +21,10 @@ struct PipelineOptions {
   bool grid = true;  // the extended grid (docs/extended-grid.md), with its objects
   // How the grid's rigid clusters become lidar objects (grid/grid_objects.h).
   grid::GridObjectOptions grid_objects;
+  // Lidar/stereo fusion of each cycle's lidar objects with the latest stereo frame
+  // (docs/fusion.md); needs the grid's objects.
+  bool fusion = true;
+  fusion::FusionOptions fusion_options;
 };
 
 class Pipeline {
@@ -36,6 +42,12 @@ class Pipeline {
   // before the first cycle or without the grid. Check its stamp: a scan the grid had to skip
   // leaves the previous frame here.
   const LidarObjectFrame* lidar_objects() const;
+  // The fused objects of the last cycle whose lidar objects were fused, or nullptr; and the
+  // engine (its statistics, the stereo objects it used). nullptr without fusion.
+  const fusion::FusedObjectFrame* fused_objects() const {
+    return fused_ ? &*fused_ : nullptr;
+  }
+  const fusion::FusionEngine* fusion() const { return fusion_ ? &*fusion_ : nullptr; }
 
   void OnOdometry(const EgoOdometry& odometry);
   void OnStereo(const StereoFrame& frame);
@@ -44,6 +56,9 @@ class Pipeline {
  private:
   std::vector<std::unique_ptr<Stage>> stages_;
   const GridStage* grid_ = nullptr;  // owned by stages_
+  std::optional<fusion::FusionEngine> fusion_;
+  StereoFrame latest_stereo_;
+  std::optional<fusion::FusedObjectFrame> fused_;
 };
 
 }  // namespace lookout::app

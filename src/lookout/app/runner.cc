@@ -13,6 +13,7 @@
 
 #include "lookout/app/grid_scoring.h"
 #include "lookout/app/lidar_object_scoring.h"
+#include "lookout/eval/fusion_metrics.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/io/grid_images.h"
 #include "lookout/io/png_writer.h"
@@ -81,6 +82,8 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   // The odometry frame (where the grid lives) is the ego's true pose at the first reading.
   std::optional<GridScorer> grid_scorer;
   std::optional<LidarObjectScorer> object_scorer;
+  std::optional<eval::FusionMetricsAccumulator> fusion_scorer;
+  if (pipeline.fusion()) fusion_scorer.emplace();
   if (pipeline.grid()) {
     const Pose2 world_from_odom = simulator.ego_trajectory().At(0.0).pose;
     grid_scorer.emplace(world_from_odom, simulator.static_world(),
@@ -146,6 +149,11 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
           object_scorer->Observe(*objects, log.truth[k],
                                  pipeline.grid()->grid().geometry().WindowGeometry());
         }
+        const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
+        if (fusion_scorer && objects && fused && fused->stamp == scan.stamp) {
+          fusion_scorer->AddFrame(*fused, *objects, pipeline.fusion()->stereo_at_lidar_time(),
+                                  eval::TrueObjectsInVehicleFrame(log.truth[k]));
+        }
         scoring_s += SecondsSince(scoring_start);
       }
       if (snapshot_due && scan.stamp >= snapshot_at) {
@@ -176,6 +184,9 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   result.metrics.values["timing.realtime_factor"] = scenario.duration_s / result.wall_s;
   if (grid_scorer) grid_scorer->Report(result.metrics.values, *pipeline.grid());
   if (object_scorer) object_scorer->Report(result.metrics.values);
+  if (fusion_scorer) {
+    for (const auto& [name, value] : fusion_scorer->Values()) result.metrics.values[name] = value;
+  }
   if (pipeline.grid() && !pipeline.grid()->objects_ms().empty()) {
     result.metrics.values["lidar_objects.extract_ms_median"] =
         eval::Median(pipeline.grid()->objects_ms());

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -44,6 +47,42 @@ TEST(RunnerTest, DeliversEveryMessageInTimestampOrderAtEachSensorsRate) {
   EXPECT_EQ(seen[2], std::make_pair(TimeNs{0}, SensorOrder::kLidar));
   EXPECT_EQ(result.metrics.values.at("timing.frames"), 26.0);
   EXPECT_GT(result.metrics.values.at("timing.realtime_factor"), 0.0);
+}
+
+}  // namespace
+}  // namespace lookout::app
+
+namespace lookout::app {
+namespace {
+
+// Fusion closes each cycle: every lidar object of the cycle is in the fused frame exactly once
+// (seen by the lidar alone or with the camera: none is lost), and the run reports fusion.*.
+TEST(RunnerTest, FusionKeepsEveryLidarObjectOfTheCycle) {
+  sim::Scenario scenario = io::LoadScenarioFile(std::string(LOOKOUT_SOURCE_DIR) +
+                                                "/scenarios/pushchair-group.yaml");
+  scenario.duration_s = 6.0;
+  Pipeline pipeline(PipelineOptions{});
+  const RunResult result = RunScenario(scenario, pipeline, RunOptions{});
+  const LidarObjectFrame* lidar = pipeline.lidar_objects();
+  const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
+  ASSERT_NE(lidar, nullptr);
+  ASSERT_NE(fused, nullptr);
+  EXPECT_EQ(fused->stamp, lidar->stamp);
+  std::map<std::uint32_t, int> seen;  // lidar object id -> fused objects that carry it
+  for (const LidarObject& o : lidar->objects) seen[o.id] = 0;
+  for (const fusion::FusedObject& o : fused->objects) {
+    EXPECT_TRUE(o.sensor_count == 1 || o.sensor_count == 2);
+    if (o.lidar_id) {
+      ASSERT_TRUE(seen.contains(*o.lidar_id)) << "unknown lidar id " << *o.lidar_id;
+      ++seen[*o.lidar_id];
+    }
+  }
+  for (const auto& [id, count] : seen) EXPECT_EQ(count, 1) << "lidar object " << id;
+  const fusion::FusionEngine* engine = pipeline.fusion();
+  ASSERT_NE(engine, nullptr);
+  const std::int64_t pairs = engine->stats().pairs;
+  EXPECT_LT(0, pairs) << "no object was seen by both sensors in 6 s of the crossing group";
+  EXPECT_TRUE(result.metrics.values.contains("fusion.position_rmse_m"));
 }
 
 }  // namespace
