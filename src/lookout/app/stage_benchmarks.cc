@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
-#include "lookout/core/random.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/grid/reference_filter.h"
+#include "lookout/risk/junction_scene.h"
 #include "lookout/risk/risk_assessment.h"
 #include "lookout/sim/simulator.h"
 
@@ -81,25 +81,7 @@ GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, in
 }
 
 double MeasureRiskStepMs(int tracks, int samples, int repetitions) {
-  // The scene of bench/risk_bench.cc: cars, cyclists and pedestrians round a junction.
-  Rng rng(20261122);
-  std::vector<risk::ObjectInput> objects;
-  for (int i = 0; i < tracks; ++i) {
-    risk::ObjectInput o;
-    o.id = static_cast<std::uint32_t>(i);
-    const int kind = i % 3;
-    o.object_class = kind == 0 ? ObjectClass::kCar
-                     : kind == 1 ? ObjectClass::kCyclist
-                                 : ObjectClass::kPedestrian;
-    const double heading = rng.Uniform(-3.14159, 3.14159);
-    const double speed = kind == 0 ? rng.Uniform(5.0, 15.0) : kind == 1 ? rng.Uniform(3.0, 7.0)
-                                                                         : rng.Uniform(0.5, 2.0);
-    o.position_m = {rng.Uniform(-5.0, 60.0), rng.Uniform(-20.0, 20.0)};
-    o.velocity_mps = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
-    o.position_covariance = Eigen::Matrix2d::Identity() * rng.Uniform(0.01, 0.5);
-    o.velocity_covariance = Eigen::Matrix2d::Identity() * rng.Uniform(0.01, 1.0);
-    objects.push_back(o);
-  }
+  const std::vector<risk::ObjectInput> objects = risk::JunctionRoadUsers(tracks, 20261122);
   risk::RiskOptions options;
   options.collision_samples = samples;
   risk::EgoInput ego;
