@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -15,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "lookout/core/input_error.h"
+#include "lookout/io/file_bytes.h"
 
 namespace lookout::io {
 namespace {
@@ -413,15 +412,7 @@ MatFile ReadMatBytes(std::string_view bytes, const std::string& source,
 }
 
 MatFile ReadMatFile(const std::string& path, const MatReadOptions& options) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw InputError(path, 0, "", fmt::format("cannot open: {}", std::strerror(errno)));
-  const std::streamoff size = in.tellg();
-  if (size < 0) throw InputError(path, 0, "", "cannot read: not a regular file");
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.seekg(0);
-  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!in) throw InputError(path, 0, "", fmt::format("cannot read: {}", std::strerror(errno)));
-  return ReadMatBytes(bytes, path, options);
+  return ReadMatBytes(ReadFileBytes(path), path, options);
 }
 
 }  // namespace lookout::io
