@@ -3,10 +3,9 @@
 // included), a crash, a hang or a sanitizer report is a bug in the reader, in the message
 // decoder, or in how they drive libbz2/liblz4.
 //
-// Seeds: fuzz/corpus/ros_bag/ holds small bags that the tests' writer makes
-// (src/lookout/io/ros_bag_test_support.h; regenerate with LOOKOUT_WRITE_FUZZ_SEEDS=1 and the
-// RosBagFuzzSeeds test): a scan, odometry, tf and people log with none, bz2 and lz4 chunks,
-// and one without an index.
+// Seeds: small bags that the tests' writer makes (src/lookout/io/ros_bag_test_support.h),
+// written into the build tree by make_ros_bag_seeds.cc when this target is built: a scan,
+// odometry, tf and people log with none, bz2 and lz4 chunks, and one without an index.
 
 #include <cstddef>
 #include <cstdint>

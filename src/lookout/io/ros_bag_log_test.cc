@@ -22,34 +22,8 @@
 namespace lookout::io {
 namespace {
 
+using testing::SmallLog;
 using testing::TestBagWriter;
-
-// A small log: two scans written out of stamp order, odometry, tf, people, and one scan whose
-// bytes are cut short.
-std::string SmallLog(const std::string& compression, bool second_scan_topic = false,
-                     bool index = true) {
-  TestBagWriter writer({compression, 4, index});
-  writer.AddConnection(0, "/scan", "sensor_msgs/LaserScan", testing::LaserScanDefinition());
-  writer.AddConnection(1, "/odom", "nav_msgs/Odometry", testing::OdometryDefinition());
-  writer.AddConnection(2, "/tf", "tf2_msgs/TFMessage", testing::TfMessageDefinition());
-  writer.AddConnection(3, "/truth", "leg_tracker/Person", testing::PersonDefinition());
-  writer.AddConnection(4, "/chatter", "std_msgs/String", "string data\n");
-  if (second_scan_topic) {
-    writer.AddConnection(5, "/scan2", "sensor_msgs/LaserScan", testing::LaserScanDefinition());
-    writer.AddMessage(5, {100, 0}, testing::LaserScanMessage({100, 0}, -1.0F, 0.5F, {1.0F}));
-  }
-  writer.AddMessage(4, {100, 0}, testing::RosSerializer().PutString("hello").bytes());
-  writer.AddMessage(0, {101, 0}, testing::LaserScanMessage({100, 900000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
-  writer.AddMessage(0, {101, 100}, testing::LaserScanMessage({100, 800000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
-  writer.AddMessage(0, {101, 200}, testing::LaserScanMessage({0, 0}, -1.0F, 0.5F, {2.0F}));
-  writer.AddMessage(0, {101, 300}, testing::LaserScanMessage({101, 0}, -1.0F, 0.5F, {1, 2}).substr(0, 30));
-  writer.AddMessage(1, {101, 400}, testing::OdometryMessage({101, 300}, 1, 2, 0.1, 0.5, 0.0));
-  writer.AddMessage(2, {101, 500}, testing::TfMessage({{{101, 500}, "odom", "base_link", 1, 2, 0.1},
-                                                       {{101, 500}, "base_link", "laser", 0, 0, 0}}));
-  writer.AddMessage(3, {102, 0}, testing::PersonMessage(1.0, 2.0, 7));
-  writer.AddMessage(3, {102, 1}, testing::PersonMessage(3.0, 4.0, 8));
-  return writer.Finish();
-}
 
 TEST(RosBagLog, DecodesTopicsByTypeIntoOneTimeBase) {
   for (const std::string compression : {"none", "bz2", "lz4"}) {
@@ -120,17 +94,14 @@ TEST(RosBagLog, ABadDefinitionOfATopicReadIsRefused) {
   }
 }
 
-// The fuzz seeds (fuzz/corpus/ros_bag, fuzz/corpus/ros_message) are made by this writer. With
-// LOOKOUT_WRITE_FUZZ_SEEDS=1 this test rewrites them; always, it checks that the committed ones
-// read back as what they were made from.
+// The fuzz seeds are made by this writer: the bags by fuzz/make_ros_bag_seeds.cc at the fuzz
+// build's time (binary seeds stay out of the repository), the messages of fuzz/corpus/ros_message
+// committed. With LOOKOUT_WRITE_FUZZ_SEEDS=1 this test rewrites the latter; always, it checks
+// that the seed bags read back as what they were made from, and the committed messages are the
+// writer's.
 TEST(RosBagFuzzSeeds, ReadBackAsWritten) {
   const std::filesystem::path corpus = std::filesystem::path(LOOKOUT_SOURCE_DIR) / "fuzz/corpus";
-  const std::vector<std::pair<std::string, std::string>> bags{
-      {"small-none.bag", SmallLog("none")},
-      {"small-bz2.bag", SmallLog("bz2")},
-      {"small-lz4.bag", SmallLog("lz4")},
-      {"small-unindexed.bag", SmallLog("bz2", false, false)},
-      {"small-two-scan-topics.bag", SmallLog("lz4", true)}};
+  const std::vector<std::pair<std::string, std::string>> bags = testing::FuzzSeedBags();
   const std::string scan_definition = testing::LaserScanDefinition();
   const std::vector<std::pair<std::string, std::string>> messages{
       {"laser_scan", "sensor_msgs/LaserScan\n" + scan_definition + '\0' +
@@ -146,19 +117,14 @@ TEST(RosBagFuzzSeeds, ReadBackAsWritten) {
   };
   if (const char* write = std::getenv("LOOKOUT_WRITE_FUZZ_SEEDS"); write != nullptr &&
                                                                    std::string(write) == "1") {
-    for (const std::string folder : {"ros_bag", "ros_message"}) {
-      std::filesystem::create_directories(corpus / folder);
-    }
-    for (const auto& [name, bytes] : bags) {
-      std::ofstream(path_of("ros_bag", name), std::ios::binary) << bytes;
-    }
+    std::filesystem::create_directories(corpus / "ros_message");
     for (const auto& [name, bytes] : messages) {
       std::ofstream(path_of("ros_message", name), std::ios::binary) << bytes;
     }
   }
   for (const auto& [name, bytes] : bags) {
     if (name.find("two-scan") != std::string::npos) continue;
-    RosBag bag = RosBag::Open(path_of("ros_bag", name).string());
+    RosBag bag(bytes, name);
     const RosBagLog log = ReadRosBagLog(bag);
     EXPECT_EQ(log.scans.size(), 3U) << name;
     EXPECT_EQ(log.people.size(), 2U) << name;

@@ -325,4 +325,41 @@ class TestBagWriter {
   std::vector<Message> messages_;
 };
 
+// A small log: two scans written out of stamp order, odometry, tf, people, and one scan whose
+// bytes are cut short.
+inline std::string SmallLog(const std::string& compression, bool second_scan_topic = false,
+                     bool index = true) {
+  TestBagWriter writer({compression, 4, index});
+  writer.AddConnection(0, "/scan", "sensor_msgs/LaserScan", testing::LaserScanDefinition());
+  writer.AddConnection(1, "/odom", "nav_msgs/Odometry", testing::OdometryDefinition());
+  writer.AddConnection(2, "/tf", "tf2_msgs/TFMessage", testing::TfMessageDefinition());
+  writer.AddConnection(3, "/truth", "leg_tracker/Person", testing::PersonDefinition());
+  writer.AddConnection(4, "/chatter", "std_msgs/String", "string data\n");
+  if (second_scan_topic) {
+    writer.AddConnection(5, "/scan2", "sensor_msgs/LaserScan", testing::LaserScanDefinition());
+    writer.AddMessage(5, {100, 0}, testing::LaserScanMessage({100, 0}, -1.0F, 0.5F, {1.0F}));
+  }
+  writer.AddMessage(4, {100, 0}, testing::RosSerializer().PutString("hello").bytes());
+  writer.AddMessage(0, {101, 0}, testing::LaserScanMessage({100, 900000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
+  writer.AddMessage(0, {101, 100}, testing::LaserScanMessage({100, 800000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
+  writer.AddMessage(0, {101, 200}, testing::LaserScanMessage({0, 0}, -1.0F, 0.5F, {2.0F}));
+  writer.AddMessage(0, {101, 300}, testing::LaserScanMessage({101, 0}, -1.0F, 0.5F, {1, 2}).substr(0, 30));
+  writer.AddMessage(1, {101, 400}, testing::OdometryMessage({101, 300}, 1, 2, 0.1, 0.5, 0.0));
+  writer.AddMessage(2, {101, 500}, testing::TfMessage({{{101, 500}, "odom", "base_link", 1, 2, 0.1},
+                                                       {{101, 500}, "base_link", "laser", 0, 0, 0}}));
+  writer.AddMessage(3, {102, 0}, testing::PersonMessage(1.0, 2.0, 7));
+  writer.AddMessage(3, {102, 1}, testing::PersonMessage(3.0, 4.0, 8));
+  return writer.Finish();
+}
+
+// The seed bags of the ROS bag fuzz target (fuzz/make_ros_bag_seeds.cc): the small log with
+// each chunk compression, without an index, and with a second scan topic; (file name, bytes).
+inline std::vector<std::pair<std::string, std::string>> FuzzSeedBags() {
+  return {{"small-none.bag", SmallLog("none")},
+          {"small-bz2.bag", SmallLog("bz2")},
+          {"small-lz4.bag", SmallLog("lz4")},
+          {"small-unindexed.bag", SmallLog("bz2", false, false)},
+          {"small-two-scan-topics.bag", SmallLog("lz4", true)}};
+}
+
 }  // namespace lookout::io::testing
