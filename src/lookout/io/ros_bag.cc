@@ -12,6 +12,7 @@
 
 #include "lookout/core/input_error.h"
 #include "lookout/io/file_bytes.h"
+#include "lookout/io/little_endian.h"
 #include "lookout/io/mcap_compression.h"
 #include "lookout/io/zip_entry.h"
 
@@ -36,13 +37,6 @@ struct RecordError {
   std::string field;
   std::string problem;
 };
-
-template <typename T>
-T LoadLittleEndian(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return v;
-}
 
 // Header fields of a record, or the fields of a connection header: `len name=value` repeated.
 class Fields {

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "lookout/io/little_endian.h"
+
 namespace lookout::io {
 namespace {
 
@@ -255,15 +257,6 @@ std::size_t ElementMinimumSize(const RosMessageDefinition& definition, const Ros
   return field.type == RosType::kMessage
              ? MinimumSerializedSize(definition, field.message_type)
              : FixedSize(field.type);
-}
-
-template <typename T>
-T LoadLittleEndian(const char* p) {
-  // ROS1 is little-endian, as is every machine Lookout runs on; memcpy is the defined way to
-  // read an unaligned value.
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return v;
 }
 
 class Decoder {

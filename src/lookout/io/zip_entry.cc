@@ -11,6 +11,7 @@
 
 #include "lookout/core/input_error.h"
 #include "lookout/io/file_bytes.h"
+#include "lookout/io/little_endian.h"
 
 namespace lookout::io {
 namespace {
@@ -40,9 +41,7 @@ class ZipBytes {
     if (offset > bytes_.size() || bytes_.size() - offset < sizeof(T)) {
       Fail(offset, "the archive ends inside a header");
     }
-    T v;
-    std::memcpy(&v, bytes_.data() + offset, sizeof(T));
-    return v;
+    return LoadLittleEndian<T>(bytes_.data() + offset);
   }
 
   std::string_view Slice(std::size_t offset, std::size_t size) const {
