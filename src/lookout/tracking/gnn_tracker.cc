@@ -1,6 +1,5 @@
 #include "lookout/tracking/gnn_tracker.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -10,16 +9,6 @@
 #include "lookout/tracking/motion_models.h"
 
 namespace lookout::tracking {
-namespace {
-
-bool Usable(const Detection& d) {
-  if (!d.position_m.allFinite() || !d.covariance.allFinite()) return false;
-  const Eigen::Matrix2d& c = d.covariance;
-  if (std::abs(c(0, 1) - c(1, 0)) > 1e-9 * (1.0 + c.cwiseAbs().maxCoeff())) return false;
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(c).eigenvalues().minCoeff() > 0.0;
-}
-
-}  // namespace
 
 void GnnOptions::Validate(const std::string& source) const {
   auto require = [&](bool ok, const char* field, const char* problem) {
@@ -37,15 +26,6 @@ void GnnOptions::Validate(const std::string& source) const {
                       max_misses_unknown, max_misses_tentative}) {
     require(m >= 0, "max_misses_*", "must be >= 0");
   }
-}
-
-bool ClassesCompatible(ObjectClass track, ObjectClass detection) {
-  if (track == ObjectClass::kUnknown || detection == ObjectClass::kUnknown) return true;
-  const auto vehicle = [](ObjectClass c) {
-    return c == ObjectClass::kCar || c == ObjectClass::kTruck;
-  };
-  if (vehicle(track) && vehicle(detection)) return true;  // car and truck are easily confused
-  return track == detection;
 }
 
 GnnTracker::GnnTracker(const GnnOptions& options) : options_(options) { options_.Validate(); }
@@ -71,7 +51,7 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
   std::vector<Detection> detections;
   detections.reserve(all.size());
   for (const Detection& d : all) {
-    if (Usable(d)) {
+    if (DetectionUsable(d)) {
       detections.push_back(d);
     } else {
       ++dropped_;

@@ -19,32 +19,9 @@
 #include "lookout/core/object_class.h"
 #include "lookout/core/time.h"
 #include "lookout/tracking/kalman.h"
+#include "lookout/tracking/tracker.h"
 
 namespace lookout::tracking {
-
-// One object to track, in a ground-fixed frame: a fused object, or one sensor's.
-struct Detection {
-  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // m^2
-  ObjectClass object_class = ObjectClass::kUnknown;
-  int sensors = 1;  // how many sensors saw it (2: lidar and stereo)
-};
-
-enum class TrackStatus { kTentative, kConfirmed };
-
-struct Track {
-  std::uint32_t id = 0;
-  TrackStatus status = TrackStatus::kTentative;
-  ObjectClass object_class = ObjectClass::kUnknown;
-  Gaussian state;  // (x, y, vx, vy)
-  TimeNs stamp = 0;
-  int updates = 0;       // detections associated so far
-  int misses = 0;        // consecutive scans without one
-  bool coasting = false; // the last scan brought no detection
-
-  Eigen::Vector2d Position() const { return state.mean.head<2>(); }
-  Eigen::Vector2d Velocity() const { return state.mean.segment<2>(2); }
-};
 
 struct GnnOptions {
   double acceleration_psd = 2.0;        // CV process noise, m^2/s^3
@@ -64,22 +41,20 @@ struct GnnOptions {
   void Validate(const std::string& source = "tracker options") const;
 };
 
-// Whether a detection of class `detection` may join a track of class `track`.
-bool ClassesCompatible(ObjectClass track, ObjectClass detection);
-
-class GnnTracker {
+class GnnTracker final : public Tracker {
  public:
   explicit GnnTracker(const GnnOptions& options = {});
 
   // One scan at `stamp`. A stamp not after the previous scan's is refused: nothing changes and
   // the call returns false (the caller logs it). Detections with a non-finite field or a
   // covariance that is not symmetric positive definite are dropped and counted.
-  bool Step(TimeNs stamp, const std::vector<Detection>& detections);
+  bool Step(TimeNs stamp, const std::vector<Detection>& detections) override;
 
+  // Every track, tentative ones included.
   const std::vector<Track>& tracks() const { return tracks_; }
-  std::vector<Track> ConfirmedTracks() const;
-  std::int64_t dropped_detections() const { return dropped_; }
-  std::int64_t refused_scans() const { return refused_; }
+  std::vector<Track> ConfirmedTracks() const override;
+  std::int64_t dropped_detections() const override { return dropped_; }
+  std::int64_t refused_scans() const override { return refused_; }
 
  private:
   int MaxMisses(const Track& track) const;
