@@ -2,11 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <limits>
-#include <utility>
+#include <optional>
 #include <vector>
 
 #include <tbb/task_arena.h>
@@ -17,7 +14,6 @@
 #include "lookout/eval/statistics.h"
 #include "lookout/io/grid_images.h"
 #include "lookout/io/png_writer.h"
-#include "lookout/io/recorder.h"
 #include "lookout/sim/simulator.h"
 
 namespace lookout::app {
@@ -27,24 +23,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The grid is recorded at a fifth of the lidar rate (2.5 Hz): 400 x 400 cells a frame, enough
-// to watch it in Foxglove without making the recording ten times larger.
-constexpr std::size_t kRecordGridEvery = 5;
-
-// The grid's belief as the recording's uint8 layers: occupancy x 255, and speed over 0-20 m/s.
-std::vector<io::GridLayer8> GridLayersToRecord(const eval::GridBelief& b) {
-  std::vector<std::uint8_t> occupancy, speed;
-  occupancy.reserve(b.occupancy.size());
-  speed.reserve(b.occupancy.size());
-  for (std::size_t i = 0; i < b.occupancy.size(); ++i) {
-    const double o = std::clamp(static_cast<double>(b.occupancy[i]), 0.0, 1.0);
-    const double v = static_cast<double>(std::hypot(b.velocity_x_mps[i], b.velocity_y_mps[i]));
-    occupancy.push_back(static_cast<std::uint8_t>(std::lround(255.0 * o)));
-    speed.push_back(static_cast<std::uint8_t>(std::lround(255.0 * std::min(v / 20.0, 1.0))));
-  }
-  return {{"occupancy", std::move(occupancy)}, {"speed", std::move(speed)}};
 }
 
 // The grid at one instant as PNG images: occupancy, and the speed map of the paper's Fig. 6
@@ -90,7 +68,6 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
                         scenario.sensors.lidar.max_range_m);
     object_scorer.emplace(world_from_odom);
   }
-  double scoring_s = 0.0;  // not the pipeline's time: excluded from the real-time factor
   bool snapshot_due = options.snapshot_s.has_value() && pipeline.grid() != nullptr;
   const TimeNs snapshot_at = options.snapshot_s ? FromSeconds(*options.snapshot_s) : 0;
 
@@ -107,80 +84,43 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
     }
   }
 
-  // The simulated clock: the three sensor streams merged by (stamp, SensorOrder).
-  std::size_t next_odometry = 0, next_stereo = 0, next_lidar = 0;
-  auto key = [](TimeNs stamp, SensorOrder order) { return std::make_pair(stamp, order); };
-  constexpr auto kNone = std::make_pair(std::numeric_limits<TimeNs>::max(), SensorOrder::kLidar);
-  std::vector<double> step_ms;
-  step_ms.reserve(log.lidar.size());
-  while (true) {
-    const auto odometry = next_odometry < log.odometry.size()
-                              ? key(log.odometry[next_odometry].stamp, SensorOrder::kOdometry)
-                              : kNone;
-    const auto stereo = next_stereo < log.stereo.size()
-                            ? key(log.stereo[next_stereo].stamp, SensorOrder::kStereo)
-                            : kNone;
-    const auto lidar = next_lidar < log.lidar.size()
-                           ? key(log.lidar[next_lidar].stamp, SensorOrder::kLidar)
-                           : kNone;
-    const auto first = std::min({odometry, stereo, lidar});
-    if (first == kNone) break;  // every stream is exhausted
-    if (first == odometry) {
-      const EgoOdometry& o = log.odometry[next_odometry++];
-      pipeline.OnOdometry(o);
-      if (recorder) recorder->Write(o);
-    } else if (first == stereo) {
-      const StereoFrame& f = log.stereo[next_stereo++];
-      pipeline.OnStereo(f);
-      if (recorder) recorder->Write(f);
-    } else {
-      const std::size_t k = next_lidar++;
-      const LidarScan& scan = log.lidar[k];
-      const Clock::time_point step_start = Clock::now();
-      pipeline.OnLidar(scan);
-      step_ms.push_back(1e3 * SecondsSince(step_start));
-      // This scan's objects; none when the grid had to skip it (no ego pose).
-      const LidarObjectFrame* objects = pipeline.lidar_objects();
-      if (objects && objects->stamp != scan.stamp) objects = nullptr;
-      if (grid_scorer) {
-        const Clock::time_point scoring_start = Clock::now();
-        grid_scorer->Observe(*pipeline.grid(), log.truth[k]);
-        if (objects) {
-          object_scorer->Observe(*objects, log.truth[k],
-                                 pipeline.grid()->grid().geometry().WindowGeometry());
-        }
-        const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
-        if (fusion_scorer && objects && fused && fused->stamp == scan.stamp) {
-          fusion_scorer->AddFrame(*fused, *objects, pipeline.fusion()->stereo_at_lidar_time(),
-                                  eval::TrueObjectsInVehicleFrame(log.truth[k]));
-        }
-        scoring_s += SecondsSince(scoring_start);
+  const auto after_cycle = [&](const LidarCycle& cycle) {
+    const sim::TruthFrame& truth = log.truth[cycle.index];
+    if (grid_scorer) {
+      grid_scorer->Observe(*pipeline.grid(), truth);
+      if (cycle.objects) {
+        object_scorer->Observe(*cycle.objects, truth,
+                               pipeline.grid()->grid().geometry().WindowGeometry());
       }
-      if (snapshot_due && scan.stamp >= snapshot_at) {
-        result.snapshots = WriteSnapshot(pipeline.grid()->grid(), options.snapshot_dir, scan.stamp);
-        snapshot_due = false;
+      const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
+      if (fusion_scorer && cycle.objects && fused && fused->stamp == cycle.scan->stamp) {
+        fusion_scorer->AddFrame(*fused, *cycle.objects, pipeline.fusion()->stereo_at_lidar_time(),
+                                eval::TrueObjectsInVehicleFrame(truth));
       }
-      if (recorder) {
-        recorder->Write(scan);
-        recorder->Write(log.truth[k]);
-        if (objects) recorder->Write(*objects);
-        if (pipeline.grid() && k % kRecordGridEvery == 0) {
-          const eval::GridBelief belief = BeliefOf(pipeline.grid()->grid());
-          recorder->WriteGrid(scan.stamp, belief.geometry, GridLayersToRecord(belief));
-        }
-      }
-      if (options.progress) options.progress(ToSeconds(scan.stamp), scenario.duration_s);
     }
-  }
+    if (snapshot_due && cycle.scan->stamp >= snapshot_at) {
+      result.snapshots =
+          WriteSnapshot(pipeline.grid()->grid(), options.snapshot_dir, cycle.scan->stamp);
+      snapshot_due = false;
+    }
+    if (recorder) recorder->Write(truth);
+    if (options.progress) options.progress(ToSeconds(cycle.scan->stamp), scenario.duration_s);
+  };
+  MessageLoopOptions loop_options;
+  loop_options.recorder = recorder ? &*recorder : nullptr;
+  loop_options.after_cycle = after_cycle;
+  const MessageLoopResult loop =
+      RunMessageLoop(SensorStreams{log.lidar, log.stereo, log.odometry}, pipeline, loop_options);
 
   if (recorder) {
     result.messages_per_topic = recorder->message_counts();
     recorder->Finish();
   }
-  result.wall_s = SecondsSince(run_start) - scoring_s;
+  // Scoring, snapshots and progress are not the pipeline's time.
+  result.wall_s = SecondsSince(run_start) - loop.after_cycle_s;
   result.metrics.scenario = scenario.name;
   result.metrics.values["timing.frames"] = static_cast<double>(result.lidar_frames);
-  result.metrics.values["timing.pipeline_ms_median"] = eval::Median(step_ms);
+  result.metrics.values["timing.pipeline_ms_median"] = eval::Median(loop.step_ms);
   result.metrics.values["timing.realtime_factor"] = scenario.duration_s / result.wall_s;
   if (grid_scorer) grid_scorer->Report(result.metrics.values, *pipeline.grid());
   if (object_scorer) object_scorer->Report(result.metrics.values);

@@ -1,7 +1,8 @@
 #pragma once
 
 // Runs one scenario: simulates the sensors, delivers every message to the pipeline in
-// timestamp order, records everything, and measures the run.
+// timestamp order (the message loop of message_loop.h), records everything with the ground
+// truth, scores the stages against it, and measures the run.
 
 #include <cstdint>
 #include <functional>
@@ -11,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "lookout/app/message_loop.h"
 #include "lookout/app/pipeline.h"
 #include "lookout/eval/metrics.h"
 #include "lookout/sim/scenario.h"
@@ -35,18 +37,14 @@ struct RunResult {
   std::int64_t stereo_frames = 0;
   std::int64_t odometry_frames = 0;
   std::map<std::string, std::uint64_t> messages_per_topic;  // as recorded
-  double wall_s = 0.0;             // the whole run, less the scoring against ground truth
+  // The whole run, less what only the ground truth needs (its scoring and recording).
+  double wall_s = 0.0;
   double simulation_wall_s = 0.0;  // of which simulating the sensors
   eval::ScenarioMetrics metrics;   // the keys of docs/cli-contract.md that have run
   // Ground truth: actors whose footprint touches the ego's, and when (scenario time, s).
   std::vector<std::pair<std::string, double>> contacts;
   std::vector<std::string> snapshots;  // PNG files written
 };
-
-// The order in which messages with equal timestamps reach the pipeline: odometry first (the
-// newest ego motion before anything uses it), then stereo, then the lidar scan that closes
-// the cycle.
-enum class SensorOrder { kOdometry = 0, kStereo = 1, kLidar = 2 };
 
 RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options);
 

@@ -1,0 +1,92 @@
+#include "lookout/app/message_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "lookout/app/grid_scoring.h"
+
+namespace lookout::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The grid's belief as the recording's uint8 layers: occupancy x 255, and speed over 0-20 m/s.
+std::vector<io::GridLayer8> GridLayersToRecord(const eval::GridBelief& b) {
+  std::vector<std::uint8_t> occupancy, speed;
+  occupancy.reserve(b.occupancy.size());
+  speed.reserve(b.occupancy.size());
+  for (std::size_t i = 0; i < b.occupancy.size(); ++i) {
+    const double o = std::clamp(static_cast<double>(b.occupancy[i]), 0.0, 1.0);
+    const double v = static_cast<double>(std::hypot(b.velocity_x_mps[i], b.velocity_y_mps[i]));
+    occupancy.push_back(static_cast<std::uint8_t>(std::lround(255.0 * o)));
+    speed.push_back(static_cast<std::uint8_t>(std::lround(255.0 * std::min(v / 20.0, 1.0))));
+  }
+  return {{"occupancy", std::move(occupancy)}, {"speed", std::move(speed)}};
+}
+
+}  // namespace
+
+MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipeline,
+                                 const MessageLoopOptions& options) {
+  MessageLoopResult result;
+  result.step_ms.reserve(streams.lidar.size());
+  io::Recorder* const recorder = options.recorder;
+
+  std::size_t next_odometry = 0, next_stereo = 0, next_lidar = 0;
+  auto key = [](TimeNs stamp, SensorOrder order) { return std::make_pair(stamp, order); };
+  constexpr auto kNone = std::make_pair(std::numeric_limits<TimeNs>::max(), SensorOrder::kLidar);
+  const std::size_t n_odometry = streams.odometry.size();
+  const std::size_t n_stereo = streams.stereo.size();
+  const std::size_t n_lidar = streams.lidar.size();
+  while (next_odometry < n_odometry || next_stereo < n_stereo || next_lidar < n_lidar) {
+    const auto odometry = next_odometry < n_odometry
+                              ? key(streams.odometry[next_odometry].stamp, SensorOrder::kOdometry)
+                              : kNone;
+    const auto stereo =
+        next_stereo < n_stereo ? key(streams.stereo[next_stereo].stamp, SensorOrder::kStereo) : kNone;
+    const auto lidar =
+        next_lidar < n_lidar ? key(streams.lidar[next_lidar].stamp, SensorOrder::kLidar) : kNone;
+    const auto first = std::min({odometry, stereo, lidar});
+    if (next_odometry < n_odometry && first == odometry) {
+      const EgoOdometry& o = streams.odometry[next_odometry++];
+      pipeline.OnOdometry(o);
+      if (recorder) recorder->Write(o);
+    } else if (next_stereo < n_stereo && first == stereo) {
+      const StereoFrame& f = streams.stereo[next_stereo++];
+      pipeline.OnStereo(f);
+      if (recorder) recorder->Write(f);
+    } else {
+      const std::size_t k = next_lidar++;
+      const LidarScan& scan = streams.lidar[k];
+      const Clock::time_point step_start = Clock::now();
+      pipeline.OnLidar(scan);
+      result.step_ms.push_back(1e3 * SecondsSince(step_start));
+      // This scan's objects; none when the grid had to skip it (no ego pose).
+      const LidarObjectFrame* objects = pipeline.lidar_objects();
+      if (objects && objects->stamp != scan.stamp) objects = nullptr;
+      if (recorder) {
+        recorder->Write(scan);
+        if (objects) recorder->Write(*objects);
+        if (pipeline.grid() && k % kRecordGridEvery == 0) {
+          const eval::GridBelief belief = BeliefOf(pipeline.grid()->grid());
+          recorder->WriteGrid(scan.stamp, belief.geometry, GridLayersToRecord(belief));
+        }
+      }
+      if (options.after_cycle) {
+        const Clock::time_point callback_start = Clock::now();
+        options.after_cycle(LidarCycle{k, &scan, objects});
+        result.after_cycle_s += SecondsSince(callback_start);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace lookout::app
