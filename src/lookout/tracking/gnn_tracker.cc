@@ -20,28 +20,10 @@ void GnnOptions::Validate(const std::string& source) const {
           "must be in (0, 1)");
   require(std::isfinite(initial_speed_sigma_mps) && initial_speed_sigma_mps > 0.0,
           "initial_speed_sigma_mps", "must be > 0");
-  require(confirm_updates_one_sensor >= 1, "confirm_updates_one_sensor", "must be >= 1");
-  require(confirm_updates_two_sensors >= 1, "confirm_updates_two_sensors", "must be >= 1");
-  for (const int m : {max_misses_pedestrian, max_misses_cyclist, max_misses_vehicle,
-                      max_misses_unknown, max_misses_tentative}) {
-    require(m >= 0, "max_misses_*", "must be >= 0");
-  }
+  TrackManagementOptions::Validate(source);
 }
 
 GnnTracker::GnnTracker(const GnnOptions& options) : options_(options) { options_.Validate(); }
-
-int GnnTracker::MaxMisses(const Track& t) const {
-  if (t.status == TrackStatus::kTentative) return options_.max_misses_tentative;
-  switch (t.object_class) {
-    case ObjectClass::kPedestrian: return options_.max_misses_pedestrian;
-    case ObjectClass::kCyclist: return options_.max_misses_cyclist;
-    case ObjectClass::kCar:
-    case ObjectClass::kTruck: return options_.max_misses_vehicle;
-    case ObjectClass::kPole:
-    case ObjectClass::kUnknown: return options_.max_misses_unknown;
-  }
-  return options_.max_misses_unknown;
-}
 
 bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
   if (last_stamp_ && stamp <= *last_stamp_) {
@@ -59,9 +41,9 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
   }
   const MotionModel cv = ConstantVelocity(options_.acceleration_psd);
   // Predict every track to this scan.
-  std::vector<MeasurementPrediction> predicted(tracks_.size());
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     Track& t = tracks_[i];
+    t.previous = TrackSnapshot{t.stamp, t.state};
     t.state = PredictState(cv, t.state, ToSeconds(stamp - t.stamp));
     t.stamp = stamp;
   }
@@ -86,44 +68,30 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
     Track& t = tracks_[i];
     const int j = a.column_of_row[i];
     if (j == assignment::kUnassigned) {
-      ++t.misses;
-      t.coasting = true;
+      t = AfterMiss(std::move(t));
       continue;
     }
     const Detection& d = detections[static_cast<std::size_t>(j)];
     used[static_cast<std::size_t>(j)] = true;
     t.state = UpdateState(t.state, d.position_m, d.covariance).posterior;
-    ++t.updates;
-    t.misses = 0;
-    t.coasting = false;
-    if (t.object_class == ObjectClass::kUnknown) t.object_class = d.object_class;
-    const int needed = d.sensors >= 2 ? options_.confirm_updates_two_sensors
-                                      : options_.confirm_updates_one_sensor;
-    if (t.status == TrackStatus::kTentative && t.updates >= needed) {
-      t.status = TrackStatus::kConfirmed;
-    }
+    t = AfterDetection(options_, std::move(t), d);
   }
   // Delete tracks missed too often (in order, so ids stay sorted).
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
-                               [&](const Track& t) { return t.misses > MaxMisses(t); }),
+                               [&](const Track& t) { return Expired(options_, t); }),
                 tracks_.end());
   // New tentative tracks from the detections no track took.
   for (std::size_t j = 0; j < detections.size(); ++j) {
     if (used[j]) continue;
     const Detection& d = detections[j];
-    Track t;
+    Track t = BornTrack(options_, d, stamp);
     t.id = next_id_++;
-    t.object_class = d.object_class;
-    t.stamp = stamp;
-    t.updates = 1;
     t.state.mean = Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0);
     Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
     p.topLeftCorner<2, 2>() = d.covariance;
     p.bottomRightCorner<2, 2>() =
         Eigen::Matrix2d::Identity() * options_.initial_speed_sigma_mps * options_.initial_speed_sigma_mps;
     t.state.cov = p;
-    if (d.sensors >= 2 && options_.confirm_updates_two_sensors <= 1) t.status = TrackStatus::kConfirmed;
-    if (options_.confirm_updates_one_sensor <= 1) t.status = TrackStatus::kConfirmed;
     tracks_.push_back(t);
   }
   last_stamp_ = stamp;

@@ -19,23 +19,17 @@
 #include "lookout/core/object_class.h"
 #include "lookout/core/time.h"
 #include "lookout/tracking/kalman.h"
+#include "lookout/tracking/track_management.h"
 #include "lookout/tracking/tracker.h"
 
 namespace lookout::tracking {
 
-struct GnnOptions {
+// The track management fields (confirmation, misses per class) are inherited, so that they keep
+// the names they had before the MHT came to share them.
+struct GnnOptions : TrackManagementOptions {
   double acceleration_psd = 2.0;        // CV process noise, m^2/s^3
   double gate_probability = 0.999;      // chi-square gate, 2 dof
   double initial_speed_sigma_mps = 5.0; // velocity prior of a new track
-  int confirm_updates_one_sensor = 3;
-  int confirm_updates_two_sensors = 1;
-  // Consecutive misses before deletion: a pedestrian hidden behind a car may reappear after
-  // a second or two; an unknown object that stops being seen was most likely clutter.
-  int max_misses_pedestrian = 25;
-  int max_misses_cyclist = 20;
-  int max_misses_vehicle = 20;
-  int max_misses_unknown = 5;
-  int max_misses_tentative = 2;
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "tracker options") const;
@@ -57,8 +51,6 @@ class GnnTracker final : public Tracker {
   std::int64_t refused_scans() const override { return refused_; }
 
  private:
-  int MaxMisses(const Track& track) const;
-
   GnnOptions options_;
   std::vector<Track> tracks_;
   std::uint32_t next_id_ = 1;

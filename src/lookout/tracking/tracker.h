@@ -6,7 +6,9 @@
 // put the MHT beside the baseline on the same input.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "lookout/core/object_class.h"
@@ -25,6 +27,12 @@ struct Detection {
 
 enum class TrackStatus { kTentative, kConfirmed };
 
+// A track's state at one scan: what Track::previous links to.
+struct TrackSnapshot {
+  TimeNs stamp = 0;
+  Gaussian state;  // (x, y, vx, vy)
+};
+
 struct Track {
   std::uint32_t id = 0;
   TrackStatus status = TrackStatus::kTentative;
@@ -34,9 +42,17 @@ struct Track {
   int updates = 0;       // detections associated so far
   int misses = 0;        // consecutive scans without one
   bool coasting = false; // the last scan brought no detection
+  // The filter's mode probabilities (the MHT's IMM: CV, CA, left turn, right turn); empty for
+  // a single-model filter.
+  Eigen::VectorXd mode_probabilities;
+  // The same track after the scan before (seed 004 VII.D: "a reference to its instance in the
+  // previous frame"), by value so that a track is a plain value; empty for a new track.
+  std::optional<TrackSnapshot> previous;
 
   Eigen::Vector2d Position() const { return state.mean.head<2>(); }
   Eigen::Vector2d Velocity() const { return state.mean.segment<2>(2); }
+  // Orientation of the pose: the direction of motion, rad counter-clockwise from x (east).
+  double HeadingRad() const { return std::atan2(state.mean(3), state.mean(2)); }
 };
 
 // Whether a detection can be used: finite, with a symmetric positive definite covariance.

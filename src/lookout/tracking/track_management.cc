@@ -1,0 +1,66 @@
+#include "lookout/tracking/track_management.h"
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::tracking {
+namespace {
+
+int UpdatesToConfirm(const TrackManagementOptions& o, const Detection& d) {
+  return d.sensors >= 2 ? o.confirm_updates_two_sensors : o.confirm_updates_one_sensor;
+}
+
+}  // namespace
+
+void TrackManagementOptions::Validate(const std::string& source) const {
+  auto require = [&](bool ok, const char* field, const char* problem) {
+    if (!ok) throw InputError(source, 0, field, problem);
+  };
+  require(confirm_updates_one_sensor >= 1, "confirm_updates_one_sensor", "must be >= 1");
+  require(confirm_updates_two_sensors >= 1, "confirm_updates_two_sensors", "must be >= 1");
+  require(max_misses_pedestrian >= 0, "max_misses_pedestrian", "must be >= 0");
+  require(max_misses_cyclist >= 0, "max_misses_cyclist", "must be >= 0");
+  require(max_misses_vehicle >= 0, "max_misses_vehicle", "must be >= 0");
+  require(max_misses_unknown >= 0, "max_misses_unknown", "must be >= 0");
+  require(max_misses_tentative >= 0, "max_misses_tentative", "must be >= 0");
+}
+
+int MaxMisses(const TrackManagementOptions& o, const Track& t) {
+  if (t.status == TrackStatus::kTentative) return o.max_misses_tentative;
+  switch (t.object_class) {
+    case ObjectClass::kPedestrian: return o.max_misses_pedestrian;
+    case ObjectClass::kCyclist: return o.max_misses_cyclist;
+    case ObjectClass::kCar:
+    case ObjectClass::kTruck: return o.max_misses_vehicle;
+    case ObjectClass::kPole:
+    case ObjectClass::kUnknown: return o.max_misses_unknown;
+  }
+  return o.max_misses_unknown;
+}
+
+Track BornTrack(const TrackManagementOptions& o, const Detection& d, TimeNs stamp) {
+  Track t;
+  t.object_class = d.object_class;
+  t.stamp = stamp;
+  t.updates = 1;
+  if (t.updates >= UpdatesToConfirm(o, d)) t.status = TrackStatus::kConfirmed;
+  return t;
+}
+
+Track AfterDetection(const TrackManagementOptions& o, Track t, const Detection& d) {
+  ++t.updates;
+  t.misses = 0;
+  t.coasting = false;
+  if (t.object_class == ObjectClass::kUnknown) t.object_class = d.object_class;
+  if (t.status == TrackStatus::kTentative && t.updates >= UpdatesToConfirm(o, d)) {
+    t.status = TrackStatus::kConfirmed;
+  }
+  return t;
+}
+
+Track AfterMiss(Track t) {
+  ++t.misses;
+  t.coasting = true;
+  return t;
+}
+
+}  // namespace lookout::tracking
