@@ -1,0 +1,128 @@
+#pragma once
+
+// Reid's multiple-hypothesis tracker (D. B. Reid, "An algorithm for tracking multiple targets",
+// IEEE Trans. AC 24(6), 1979; seed 004 section VII.A-C), hypothesis-oriented, in the form of
+// Cox and Hingorani ("An efficient implementation of Reid's MHT algorithm and its evaluation for
+// the purpose of visual tracking", IEEE PAMI 18(2), 1996): at each scan every kept global
+// hypothesis is extended by its m best associations (hypothesis_ranking.h: gating clusters,
+// Murty's method), and the m best children over all parents are kept.
+//
+// Each track hypothesis carries an IMM (imm.h: CV, CA, left turn, right turn). Track hypotheses
+// are shared between the global hypotheses that hold them (immutable nodes): a track is
+// predicted and gated once per scan however many hypotheses hold it, and a (track, detection)
+// update is computed once, and only when a kept hypothesis makes it.
+//
+// Score of a global hypothesis (log of Reid's eq. 16, up to a constant of the scan):
+//   log P(child) = log P(parent)
+//                + sum over the parent's tracks, missed:   log(1 - PD PG)
+//                + sum over the detections they took:      log PD + log g(z | track)
+//                + sum over false alarms:                  log lambda_FA
+//                + sum over new tracks:                    log lambda_NT
+// g is the IMM's measurement likelihood sum_j c_j N(z; H x_j, S_j) (1/m^2), PG the gate's
+// probability (g is not renormalised to the gate: PD PG g / PG = PD g), lambda_FA and lambda_NT
+// densities per m^2 and scan; the probabilities are normalised over the kept hypotheses.
+//
+// Pruning after each scan: the m best children (m = hypotheses_m, the cap on their number),
+// those below min_hypothesis_probability, and N-scan pruning (every hypothesis must descend from
+// the one the best hypothesis descends from N scans back: decisions older than N scans are
+// final). Track management (track_management.h) is applied in every branch; a track missed too
+// often ends. The output is the best hypothesis's confirmed tracks (seed 004 VII.C: "the most
+// probable branch"), with ids that belong to the track tree (the birth it comes from), so that a
+// change of best hypothesis never renumbers a track. Deterministic: no threads, no hashing order
+// in any result, ties broken by fixed orders (parent rank, then the child's rank).
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lookout/core/time.h"
+#include "lookout/tracking/imm.h"
+#include "lookout/tracking/track_management.h"
+#include "lookout/tracking/tracker.h"
+
+namespace lookout::tracking {
+
+struct MhtOptions {
+  TrackManagementOptions management;
+
+  // The IMM of every track (docs/imm.md): fixed-rate left and right turns at +-turn_rate_rad_s.
+  double cv_accel_psd = 0.3;             // m^2/s^3
+  double ca_jerk_psd = 0.1;              // m^2/s^5
+  double turn_rate_rad_s = 0.3;
+  double turn_accel_psd = 0.3;           // m^2/s^3
+  double mode_stay_probability = 0.98;   // per scan; leaving to each other mode: (1 - stay) / 3
+  double initial_speed_sigma_mps = 5.0;  // velocity prior of a new track
+  double initial_acceleration_sigma_mps2 = 2.0;  // CA's acceleration prior
+
+  // Hypothesis scores.
+  double detection_probability = 0.9;      // PD
+  double gate_probability = 0.999;         // PG, chi-square gate with 2 dof
+  double clutter_density_per_m2 = 1e-4;    // lambda_FA: false alarms per m^2 and scan
+  double new_track_density_per_m2 = 1e-3;  // lambda_NT: new targets per m^2 and scan
+
+  // Pruning.
+  int hypotheses_m = 10;  // global hypotheses kept per scan, and Murty's m for each parent
+  int n_scan = 3;         // N-scan pruning depth, scans
+  double min_hypothesis_probability = 1e-4;
+
+  // Throws lookout::InputError naming the first field out of range.
+  void Validate(const std::string& source = "mht options") const;
+};
+
+// The four-model IMM the tracks carry.
+ImmOptions MhtImm(const MhtOptions& options);
+
+class MhtTracker final : public Tracker {
+ public:
+  explicit MhtTracker(const MhtOptions& options = {});
+
+  bool Step(TimeNs stamp, const std::vector<Detection>& detections) override;
+  std::vector<Track> ConfirmedTracks() const override { return confirmed_; }
+  std::int64_t dropped_detections() const override { return dropped_; }
+  std::int64_t refused_scans() const override { return refused_; }
+
+  // Every track of the best hypothesis, tentative ones too (id 0 until first confirmed), in
+  // track-tree order.
+  std::vector<Track> BestHypothesisTracks() const;
+  // The kept global hypotheses' probabilities, best first (they sum to 1).
+  std::vector<double> HypothesisProbabilities() const;
+  // Every kept hypothesis's tracks (ids as in BestHypothesisTracks), best first.
+  std::vector<std::vector<Track>> HypothesisTracks() const;
+  // Distinct track hypotheses held by the kept global hypotheses.
+  std::size_t TrackHypothesisCount() const;
+  // Scans whose best hypothesis does not descend from the previous scan's best.
+  std::int64_t best_hypothesis_switches() const { return switches_; }
+
+  const MhtOptions& options() const { return options_; }
+
+ private:
+  struct Node;  // one track hypothesis (mht_tracker.cc)
+  using NodePtr = std::shared_ptr<const Node>;
+  struct Hypothesis {
+    std::vector<NodePtr> tracks;  // in track-tree order
+    double log_probability = 0.0;
+    std::uint64_t id = 0;
+    std::vector<std::uint64_t> ancestors;  // the hypotheses it descends from, latest first, <= N
+  };
+  struct ScanWork;
+
+  Track Output(const Node& node) const;
+
+  MhtOptions options_;
+  ImmOptions imm_;
+  std::vector<Hypothesis> hypotheses_;  // best first
+  std::map<std::uint64_t, std::uint32_t> id_of_tree_;
+  std::vector<Track> confirmed_;
+  std::uint64_t next_tree_ = 1;
+  std::uint64_t next_hypothesis_ = 1;
+  std::uint32_t next_id_ = 1;
+  std::optional<TimeNs> last_stamp_;
+  std::int64_t dropped_ = 0;
+  std::int64_t refused_ = 0;
+  std::int64_t switches_ = 0;
+};
+
+}  // namespace lookout::tracking
