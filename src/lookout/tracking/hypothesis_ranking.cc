@@ -73,17 +73,27 @@ void RankCluster(const AssociationProblem& p, const std::vector<std::vector<cons
                  std::size_t m, Cluster& c) {
   const auto rows = static_cast<Eigen::Index>(c.detections.size());
   const auto tracks = static_cast<Eigen::Index>(c.tracks.size());
-  if (tracks == 0) {
-    assert(rows == 1);
-    // False alarm first on equal costs: the fixed order.
-    const bool alarm_first = p.false_alarm_cost <= p.new_track_cost;
-    c.costs = alarm_first ? std::vector<double>{p.false_alarm_cost, p.new_track_cost}
-                          : std::vector<double>{p.new_track_cost, p.false_alarm_cost};
-    c.assignments = alarm_first ? std::vector<std::vector<int>>{{kFalseAlarm}, {kNewTrack}}
-                                : std::vector<std::vector<int>>{{kNewTrack}, {kFalseAlarm}};
-    if (m < 2) {
-      c.costs.resize(1);
-      c.assignments.resize(1);
+  if (rows == 1) {
+    // One detection: its choices are its gated tracks, a false alarm and a new track, sorted by
+    // cost, equal costs in that order (the fixed order). No solver needed: the common case.
+    struct Choice {
+      double cost;
+      int what;
+    };
+    std::vector<Choice> choices;
+    for (const GatedPair* g : by_detection[static_cast<std::size_t>(c.detections[0])]) {
+      choices.push_back({g->cost, g->track});
+    }
+    std::stable_sort(choices.begin(), choices.end(),
+                     [](const Choice& a, const Choice& b) { return a.what < b.what; });
+    choices.push_back({p.false_alarm_cost, kFalseAlarm});
+    choices.push_back({p.new_track_cost, kNewTrack});
+    std::stable_sort(choices.begin(), choices.end(),
+                     [](const Choice& a, const Choice& b) { return a.cost < b.cost; });
+    if (choices.size() > m) choices.resize(m);
+    for (const Choice& choice : choices) {
+      c.costs.push_back(choice.cost);
+      c.assignments.push_back({choice.what});
     }
     return;
   }

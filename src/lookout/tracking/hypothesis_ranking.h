@@ -9,8 +9,8 @@
 // detection-track gating graph, Reid's "clusters"). Murty's method runs on each cluster's small
 // matrix, rows its detections, columns its tracks plus one false-alarm and one new-track column
 // per detection; the m best global associations are then the m least sums of one choice per
-// cluster, taken from the clusters' ranked lists. A cluster of one detection and no track has
-// two choices (false alarm, new track) and needs no solver. Tracks that gate nothing are missed
+// cluster, taken from the clusters' ranked lists. A cluster of one detection (the common case)
+// has its choices sorted instead of solved. Tracks that gate nothing are missed
 // in every association and appear in no cluster.
 
 #include <cstddef>
@@ -44,8 +44,8 @@ struct RankedAssociation {
 };
 
 // The min(m, all) least-cost associations, cheapest first. Equal costs come out in a fixed
-// order (clusters by their first detection, Murty's order within a cluster, false alarm before
-// new track), so the result is the same on every run. No detections: one empty association.
+// order (clusters by their first detection; within a cluster, Murty's order, or for a single
+// detection its tracks in order, then false alarm, then new track), so the result is the same on every run. No detections: one empty association.
 std::vector<RankedAssociation> BestAssociations(const AssociationProblem& problem, std::size_t m);
 
 }  // namespace lookout::tracking

@@ -1,5 +1,6 @@
 #include "lookout/tracking/imm.h"
 
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -98,18 +99,33 @@ ImmState InitImm(const ImmOptions& options, const Gaussian& prior,
 Gaussian MomentMatch(const std::vector<std::vector<int>>& member_components,
                      const std::vector<Gaussian>& members, const Eigen::VectorXd& weights,
                      const std::vector<int>& components) {
+  // Canonical components are at most kFullStateSize: fixed-capacity vectors and matrices keep the
+  // working set off the heap (the MHT calls this for every track hypothesis and scan).
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kFullStateSize, 1>;
+  using SmallMatrix =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kFullStateSize, kFullStateSize>;
   const auto n = static_cast<Eigen::Index>(components.size());
+  assert(n <= kFullStateSize);
   const std::size_t count = members.size();
 
+  // where[i][a]: the index of components[a] in member i, -1 when the member lacks it.
+  std::vector<std::array<int, kFullStateSize>> where(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (Eigen::Index a = 0; a < n; ++a) {
+      where[i][static_cast<std::size_t>(a)] =
+          IndexOf(member_components[i], components[static_cast<std::size_t>(a)]);
+    }
+  }
+  const auto at = [&](std::size_t i, Eigen::Index a) { return where[i][static_cast<std::size_t>(a)]; };
+
   // The fill of each component: the moment-matched mean and variance over its carriers.
-  Eigen::VectorXd fill_mean = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd fill_var = Eigen::VectorXd::Zero(n);
+  SmallVector fill_mean = SmallVector::Zero(n);
+  SmallVector fill_var = SmallVector::Zero(n);
   for (Eigen::Index a = 0; a < n; ++a) {
-    const int c = components[static_cast<std::size_t>(a)];
     double total = 0.0;
     std::size_t carriers = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      if (IndexOf(member_components[i], c) >= 0) {
+      if (at(i, a) >= 0) {
         total += weights(static_cast<Eigen::Index>(i));
         ++carriers;
       }
@@ -121,11 +137,11 @@ Gaussian MomentMatch(const std::vector<std::vector<int>>& member_components,
                          : 1.0 / static_cast<double>(carriers);
     };
     for (std::size_t i = 0; i < count; ++i) {
-      const int p = IndexOf(member_components[i], c);
+      const int p = at(i, a);
       if (p >= 0) fill_mean(a) += weight_of(i) * members[i].mean(At(p));
     }
     for (std::size_t i = 0; i < count; ++i) {
-      const int p = IndexOf(member_components[i], c);
+      const int p = at(i, a);
       if (p < 0) continue;
       const double d = members[i].mean(At(p)) - fill_mean(a);
       fill_var(a) += weight_of(i) * (members[i].cov(At(p), At(p)) + d * d);
@@ -133,29 +149,33 @@ Gaussian MomentMatch(const std::vector<std::vector<int>>& member_components,
   }
 
   // Each member augmented to `components`, then the usual moment matching of the mixture.
-  std::vector<Gaussian> augmented(count);
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(n);
-  for (std::size_t i = 0; i < count; ++i) {
-    Gaussian& g = augmented[i];
-    g.mean = fill_mean;
-    g.cov = fill_var.asDiagonal();
+  const auto augmented_mean = [&](std::size_t i) {
+    SmallVector g = fill_mean;
     for (Eigen::Index a = 0; a < n; ++a) {
-      const int pa = IndexOf(member_components[i], components[static_cast<std::size_t>(a)]);
+      const int pa = at(i, a);
+      if (pa >= 0) g(a) = members[i].mean(At(pa));
+    }
+    return g;
+  };
+  SmallVector mean = SmallVector::Zero(n);
+  for (std::size_t i = 0; i < count; ++i) {
+    mean += weights(static_cast<Eigen::Index>(i)) * augmented_mean(i);
+  }
+  SmallMatrix cov = SmallMatrix::Zero(n, n);
+  for (std::size_t i = 0; i < count; ++i) {
+    SmallMatrix g = fill_var.asDiagonal();
+    for (Eigen::Index a = 0; a < n; ++a) {
+      const int pa = at(i, a);
       if (pa < 0) continue;
-      g.mean(a) = members[i].mean(At(pa));
       for (Eigen::Index b = 0; b < n; ++b) {
-        const int pb = IndexOf(member_components[i], components[static_cast<std::size_t>(b)]);
-        if (pb >= 0) g.cov(a, b) = members[i].cov(At(pa), At(pb));
+        const int pb = at(i, b);
+        if (pb >= 0) g(a, b) = members[i].cov(At(pa), At(pb));
       }
     }
-    mean += weights(static_cast<Eigen::Index>(i)) * g.mean;
+    const SmallVector d = augmented_mean(i) - mean;
+    cov += weights(static_cast<Eigen::Index>(i)) * (g + d * d.transpose());
   }
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
-  for (std::size_t i = 0; i < count; ++i) {
-    const Eigen::VectorXd d = augmented[i].mean - mean;
-    cov += weights(static_cast<Eigen::Index>(i)) * (augmented[i].cov + d * d.transpose());
-  }
-  return {mean, 0.5 * (cov + cov.transpose())};
+  return {Eigen::VectorXd(mean), Eigen::MatrixXd(0.5 * (cov + cov.transpose()))};
 }
 
 Mixing MixInto(const ImmOptions& options, const ImmState& state) {

@@ -43,6 +43,14 @@ double ImmLogLikelihood(const ImmState& predicted, const ImmMeasurementPredictio
   return LogSumExp(terms);
 }
 
+// v' S^-1 v for a symmetric positive definite 2 x 2 S, written out: the gate runs for every
+// (track hypothesis, detection) pair, and the general NormalisedSquare allocates.
+double Nis2(const Eigen::Vector2d& v, const Eigen::Matrix2d& S) {
+  const double det = S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0);
+  return (S(1, 1) * v.x() * v.x() - (S(0, 1) + S(1, 0)) * v.x() * v.y() + S(0, 0) * v.y() * v.y()) /
+         det;
+}
+
 }  // namespace
 
 void MhtOptions::Validate(const std::string& source) const {
@@ -136,7 +144,7 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
         const Detection& d = detections[static_cast<std::size_t>(j)];
         if (!ClassesCompatible(node->track.object_class, d.object_class)) continue;
         const Eigen::Vector2d v = d.position_m - p.combined.z;
-        if (NormalisedSquare(v, p.combined.S + d.covariance) > gate) continue;
+        if (Nis2(v, p.combined.S + d.covariance) > gate) continue;
         b.gated.push_back({j, ImmLogLikelihood(b.predicted, p, d.position_m, d.covariance), {}});
       }
       work.branches.push_back(std::move(b));
