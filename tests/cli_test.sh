@@ -27,7 +27,8 @@ case "$case_name" in
     node -e '
       const b = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
       for (const key of ["sim.realtime_factor", "grid.cycle_ms_median", "grid.reference_speedup",
-                         "risk.step_ms_median", "pipeline.realtime_factor"]) {
+                         "tracking.mht_step_ms_median", "risk.step_ms_median",
+                         "pipeline.realtime_factor"]) {
         if (!(typeof b[key] === "number" && b[key] > 0)) { console.error(`${key}: ${b[key]}`); process.exit(1); }
       }
       // The fast path must beat the literal reference it is measured against.

@@ -12,6 +12,8 @@
 #include "lookout/risk/junction_scene.h"
 #include "lookout/risk/risk_assessment.h"
 #include "lookout/sim/simulator.h"
+#include "lookout/tracking/benchmark_scene.h"
+#include "lookout/tracking/mht_tracker.h"
 
 namespace lookout::app {
 namespace {
@@ -96,6 +98,31 @@ double MeasureRiskStepMs(int tracks, int samples, int repetitions) {
     sink += a.risk;
   }
   if (!std::isfinite(sink)) throw std::logic_error("risk step gave a non-finite risk");
+  return eval::Median(ms);
+}
+
+double MeasureMhtStepMs(int targets, int false_objects, int hypotheses_m, int n_scan,
+                        int repetitions) {
+  constexpr int kWarmUpScans = 20;  // 2 s: every target tracked, the hypotheses branched
+  const tracking::BenchmarkScene scene =
+      tracking::MakeBenchmarkScene(targets, false_objects, kWarmUpScans + 1, 20261201);
+  tracking::MhtOptions options;
+  options.hypotheses_m = hypotheses_m;
+  options.n_scan = n_scan;
+  options.clutter_density_per_m2 = scene.clutter_density_per_m2;
+  options.new_track_density_per_m2 = 2.0 * scene.clutter_density_per_m2;
+  tracking::MhtTracker warm(options);
+  for (std::size_t k = 0; k < kWarmUpScans; ++k) warm.Step(scene.stamps[k], scene.scans[k]);
+  std::vector<double> ms;
+  std::size_t sink = 0;
+  for (int r = 0; r < repetitions; ++r) {
+    tracking::MhtTracker tracker = warm;
+    const Clock::time_point start = Clock::now();
+    tracker.Step(scene.stamps[kWarmUpScans], scene.scans[kWarmUpScans]);
+    ms.push_back(MsSince(start));
+    sink += tracker.ConfirmedTracks().size();
+  }
+  if (sink == 0) throw std::logic_error("MHT benchmark: no confirmed track");
   return eval::Median(ms);
 }
 

@@ -28,4 +28,11 @@ GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, in
 // Monte Carlo samples each; the median over `repetitions`, ms.
 double MeasureRiskStepMs(int tracks, int samples, int repetitions);
 
+// One MHT step (m = hypotheses_m global hypotheses, N = n_scan) on the tracking benchmark scene
+// (tracking/benchmark_scene.h: `targets` road users and `false_objects` false detections a
+// scan, 10 Hz), timed on the scan after 2 s of tracking; each repetition steps a fresh copy of
+// the same tracker state, copying not timed. The median over `repetitions`, ms.
+double MeasureMhtStepMs(int targets, int false_objects, int hypotheses_m, int n_scan,
+                        int repetitions);
+
 }  // namespace lookout::app
