@@ -16,7 +16,7 @@ case "$case_name" in
     [[ -s "$work/out/metrics.json" ]] || fail "no metrics.json"
     grep -q '"scenario": "left-turn-across-path"' "$work/out/metrics.json" || fail "metrics.json scenario"
     grep -q '"timing.frames": 151' "$work/out/metrics.json" || fail "timing.frames should be 151"
-    for word in scenario simulated frames messages "wall time" "real time" recording; do
+    for word in scenario simulated frames messages warnings "wall time" "real time" recording; do
       grep -q "^$word" "$work/stdout" || fail "summary lacks '$word'"
     done
     ls "$work/out" | grep -q '\.part$' && fail "a .part file was left behind"
@@ -98,7 +98,8 @@ case "$case_name" in
       const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
       if (r.scenarios.length !== Number(process.argv[2])) process.exit(1);
       for (const s of r.scenarios)
-        for (const k of ["timing.frames", "timing.pipeline_ms_median", "timing.realtime_factor"])
+        for (const k of ["timing.frames", "timing.pipeline_ms_median", "timing.realtime_factor",
+                         "tracking.gospa_m", "risk.warned", "risk.max_level"])
           if (typeof s.metrics[k] !== "number") { console.error(s.scenario, k); process.exit(1); }
     ' "$work/eval.json" "${#files[@]}" || fail "eval JSON"
     ;;

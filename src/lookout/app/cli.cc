@@ -69,6 +69,23 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
   if (r.contacts.empty()) std::cout << " none";
   for (const auto& [id, t] : r.contacts) std::cout << fmt::format(" {} at {:.2f} s", id, t);
   std::cout << "  (ground truth)\n";
+  std::cout << "warnings   ";
+  if (r.warnings.empty()) std::cout << " none";
+  std::cout << "\n";
+  for (std::size_t i = 0; i < r.warnings.size(); ++i) {
+    const risk::WarningEvent& e = r.warnings[i];
+    std::cout << fmt::format("  {:6.2f} s  {:<11}", ToSeconds(e.stamp), risk::ToString(e.level));
+    if (e.object_id) {
+      std::cout << fmt::format("  track {} ({})", *e.object_id, ToString(r.warning_classes[i]));
+    }
+    if (e.ttc_s) std::cout << fmt::format("  TTC {:.2f} s", *e.ttc_s);
+    std::cout << "\n";
+  }
+  for (const std::string& w : r.stage_warnings) std::cerr << "lookout: warning: " << w << "\n";
+  if (r.stage_warning_count > static_cast<std::int64_t>(r.stage_warnings.size())) {
+    std::cerr << fmt::format("lookout: warning: ... {} more\n",
+                             r.stage_warning_count - static_cast<std::int64_t>(r.stage_warnings.size()));
+  }
   std::cout << fmt::format("wall time   {:.3f} s (sensor simulation {:.3f} s)\n", r.wall_s,
                            r.simulation_wall_s);
   std::cout << fmt::format("real time   {:.1f}x faster than real time\n",

@@ -74,6 +74,18 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
       if (recorder) {
         recorder->Write(scan);
         if (objects) recorder->Write(*objects);
+        // The tracks and the risk step of this cycle, and a change of warning level.
+        const TrackingStage* tracking = pipeline.tracking();
+        if (tracking && tracking->last_stamp() == scan.stamp) {
+          recorder->Write(scan.stamp, tracking->tracks());
+        }
+        const RiskStage* risk = pipeline.risk();
+        if (risk && risk->last_stamp() == scan.stamp) {
+          recorder->Write(scan.stamp, risk->last_ego(), risk->last_assessment(), risk->level());
+          if (!risk->events().empty() && risk->events().back().stamp == scan.stamp) {
+            recorder->Write(risk->events().back());
+          }
+        }
         if (pipeline.grid() && k % kRecordGridEvery == 0) {
           const eval::GridBelief belief = BeliefOf(pipeline.grid()->grid());
           recorder->WriteGrid(scan.stamp, belief.geometry, GridLayersToRecord(belief));

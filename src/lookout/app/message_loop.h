@@ -13,7 +13,8 @@
 // total and deterministic, but a late message is delivered where its stream's order puts it.
 //
 // Recording, when a recorder is given: every message as it is delivered; after each lidar
-// cycle, this scan's lidar objects, and the grid's belief at every kRecordGridEvery-th scan.
+// cycle, this scan's lidar objects, the tracks and the risk step when they ran, a warning event
+// when the level changed, and the grid's belief at every kRecordGridEvery-th scan.
 
 #include <cstddef>
 #include <functional>

@@ -8,7 +8,13 @@ Pipeline::Pipeline(const PipelineOptions& options) {
                                             options.grid_objects);
     grid_ = grid.get();
     stages_.push_back(std::move(grid));
-    if (options.fusion) fusion_.emplace(options.fusion_options);
+    if (options.fusion) {
+      fusion_.emplace(options.fusion_options);
+      if (options.tracking) {
+        tracking_.emplace(options.tracking_options);
+        if (options.risk) risk_.emplace(options.risk_options);
+      }
+    }
   }
 }
 
@@ -17,8 +23,13 @@ const LidarObjectFrame* Pipeline::lidar_objects() const {
   return &*grid_->last_objects();
 }
 
+void Pipeline::SetEgoRoute(std::vector<Eigen::Vector2d> route_m) {
+  if (risk_) risk_->SetRoute(std::move(route_m));
+}
+
 void Pipeline::OnOdometry(const EgoOdometry& odometry) {
   for (const auto& stage : stages_) stage->OnOdometry(odometry);
+  if (risk_) risk_->OnOdometry(odometry);
 }
 
 void Pipeline::OnStereo(const StereoFrame& frame) {
@@ -33,6 +44,13 @@ void Pipeline::OnLidar(const LidarScan& scan) {
   const LidarObjectFrame* objects = lidar_objects();
   if (fusion_ && objects && objects->stamp == scan.stamp) {
     fused_ = fusion_->Fuse(*objects, latest_stereo_);
+    // Tracks in the odometry frame, then the risk they pose to the ego at this stamp.
+    if (tracking_) {
+      tracking_->Step(*fused_);
+      if (risk_ && tracking_->last_stamp() == fused_->stamp) {
+        risk_->Step(fused_->stamp, fused_->ego_pose, tracking_->tracks());
+      }
+    }
   }
 }
 

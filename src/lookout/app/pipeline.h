@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
+#include "lookout/app/risk_stage.h"
 #include "lookout/app/stage.h"
+#include "lookout/app/tracking_stage.h"
 #include "lookout/core/messages.h"
 #include "lookout/fusion/fusion_engine.h"
 
@@ -25,6 +27,12 @@ struct PipelineOptions {
   // (docs/fusion.md); needs the grid's objects.
   bool fusion = true;
   fusion::FusionOptions fusion_options;
+  // Tracking of the fused objects in the odometry frame (app/tracking_stage.h); needs fusion.
+  bool tracking = true;
+  TrackingStageOptions tracking_options;
+  // Collision risk and warnings from the tracks (app/risk_stage.h); needs tracking.
+  bool risk = true;
+  RiskStageOptions risk_options;
 };
 
 class Pipeline {
@@ -48,6 +56,12 @@ class Pipeline {
     return fused_ ? &*fused_ : nullptr;
   }
   const fusion::FusionEngine* fusion() const { return fusion_ ? &*fusion_ : nullptr; }
+  // The tracking and risk stages, or nullptr without them. Both run on each fused frame; check
+  // their last_stamp() against the scan's.
+  const TrackingStage* tracking() const { return tracking_ ? &*tracking_ : nullptr; }
+  const RiskStage* risk() const { return risk_ ? &*risk_ : nullptr; }
+  // The ego's intended route, odometry frame (RiskStage::SetRoute); ignored without risk.
+  void SetEgoRoute(std::vector<Eigen::Vector2d> route_m);
 
   void OnOdometry(const EgoOdometry& odometry);
   void OnStereo(const StereoFrame& frame);
@@ -59,6 +73,8 @@ class Pipeline {
   std::optional<fusion::FusionEngine> fusion_;
   StereoFrame latest_stereo_;
   std::optional<fusion::FusedObjectFrame> fused_;
+  std::optional<TrackingStage> tracking_;
+  std::optional<RiskStage> risk_;
 };
 
 }  // namespace lookout::app

@@ -10,6 +10,8 @@
 
 #include "lookout/app/grid_scoring.h"
 #include "lookout/app/lidar_object_scoring.h"
+#include "lookout/app/risk_scoring.h"
+#include "lookout/app/tracking_scoring.h"
 #include "lookout/eval/fusion_metrics.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/io/grid_images.h"
@@ -58,16 +60,36 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   result.odometry_frames = static_cast<std::int64_t>(log.odometry.size());
 
   // The odometry frame (where the grid lives) is the ego's true pose at the first reading.
+  const Pose2 world_from_odom = simulator.ego_trajectory().At(0.0).pose;
   std::optional<GridScorer> grid_scorer;
   std::optional<LidarObjectScorer> object_scorer;
   std::optional<eval::FusionMetricsAccumulator> fusion_scorer;
   if (pipeline.fusion()) fusion_scorer.emplace();
   if (pipeline.grid()) {
-    const Pose2 world_from_odom = simulator.ego_trajectory().At(0.0).pose;
     grid_scorer.emplace(world_from_odom, simulator.static_world(),
                         scenario.sensors.lidar.max_range_m);
     object_scorer.emplace(world_from_odom);
   }
+  // The ego's intended route: the scenario's ego path, as a navigation system would give it, in
+  // the odometry frame (where the risk stage works).
+  std::vector<Eigen::Vector2d> route_odom;
+  for (const Eigen::Vector2d& p : scenario.ego.path) {
+    route_odom.push_back(world_from_odom.Inverse() * p);
+  }
+  pipeline.SetEgoRoute(route_odom);
+  std::optional<TrackingScorer> tracking_scorer;
+  if (pipeline.tracking()) {
+    const grid::GridOptions grid_options;
+    tracking_scorer.emplace(world_from_odom,
+                            SensorReach::Of(scenario.sensors, 0.5 * grid_options.width_cells *
+                                                                  grid_options.cell_size_m));
+  }
+  std::optional<RiskScorer> risk_scorer;
+  if (pipeline.risk()) {
+    risk_scorer.emplace(world_from_odom, pipeline.risk()->options(), scenario.ego.path,
+                        scenario.expect, result.contacts);
+  }
+  std::map<std::uint32_t, ObjectClass> warned_classes;  // track id -> class, for the summary
   bool snapshot_due = options.snapshot_s.has_value() && pipeline.grid() != nullptr;
   const TimeNs snapshot_at = options.snapshot_s ? FromSeconds(*options.snapshot_s) : 0;
 
@@ -98,6 +120,22 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
                                 eval::TrueObjectsInVehicleFrame(truth));
       }
     }
+    const TrackingStage* tracking = pipeline.tracking();
+    const RiskStage* risk = pipeline.risk();
+    if (tracking && tracking->last_stamp() == cycle.scan->stamp) {
+      tracking_scorer->Observe(truth, tracking->tracks(),
+                               tracking->baseline() ? &tracking->baseline_tracks() : nullptr);
+      if (risk && risk->last_stamp() == cycle.scan->stamp) {
+        risk_scorer->Observe(truth, tracking->tracks(), risk->last_assessment());
+        if (!risk->events().empty() && risk->events().back().stamp == cycle.scan->stamp) {
+          if (const auto id = risk->events().back().object_id) {
+            for (const tracking::Track& t : tracking->tracks()) {
+              if (t.id == *id) warned_classes[*id] = t.object_class;
+            }
+          }
+        }
+      }
+    }
     if (snapshot_due && cycle.scan->stamp >= snapshot_at) {
       result.snapshots =
           WriteSnapshot(pipeline.grid()->grid(), options.snapshot_dir, cycle.scan->stamp);
@@ -126,6 +164,30 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   if (object_scorer) object_scorer->Report(result.metrics.values);
   if (fusion_scorer) {
     for (const auto& [name, value] : fusion_scorer->Values()) result.metrics.values[name] = value;
+  }
+  if (tracking_scorer) tracking_scorer->Report(result.metrics.values);
+  if (const TrackingStage* tracking = pipeline.tracking()) {
+    if (!tracking->step_ms().empty()) {
+      result.metrics.values["timing.tracking_ms_median"] = eval::Median(tracking->step_ms());
+    }
+    if (!tracking->baseline_step_ms().empty()) {
+      result.metrics.values["timing.tracking_baseline_ms_median"] =
+          eval::Median(tracking->baseline_step_ms());
+    }
+    result.stage_warnings = tracking->warnings();
+    result.stage_warning_count = tracking->warning_count();
+  }
+  if (const RiskStage* risk = pipeline.risk()) {
+    risk_scorer->Report(risk->events(), result.metrics.values);
+    if (!risk->step_ms().empty()) {
+      result.metrics.values["timing.risk_ms_median"] = eval::Median(risk->step_ms());
+    }
+    result.warnings = risk->events();
+    for (const risk::WarningEvent& e : result.warnings) {
+      const auto c = e.object_id ? warned_classes.find(*e.object_id) : warned_classes.end();
+      result.warning_classes.push_back(c != warned_classes.end() ? c->second
+                                                                 : ObjectClass::kUnknown);
+    }
   }
   if (pipeline.grid() && !pipeline.grid()->objects_ms().empty()) {
     result.metrics.values["lidar_objects.extract_ms_median"] =

@@ -44,6 +44,14 @@ struct RunResult {
   // Ground truth: actors whose footprint touches the ego's, and when (scenario time, s).
   std::vector<std::pair<std::string, double>> contacts;
   std::vector<std::string> snapshots;  // PNG files written
+  // The risk stage's warning events (level changes, each naming its object and TTC), and the
+  // class of each event's object as tracked.
+  std::vector<risk::WarningEvent> warnings;
+  std::vector<ObjectClass> warning_classes;
+  // Degradations the stages logged (refused frames, dropped objects), the first few of them,
+  // and how many there were.
+  std::vector<std::string> stage_warnings;
+  std::int64_t stage_warning_count = 0;
 };
 
 RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options);

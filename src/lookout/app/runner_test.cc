@@ -87,3 +87,34 @@ TEST(RunnerTest, FusionKeepsEveryLidarObjectOfTheCycle) {
 
 }  // namespace
 }  // namespace lookout::app
+
+namespace lookout::app {
+namespace {
+
+// Tracking and risk close each cycle: the child who runs out from behind the parked car (in
+// view from 1.35 s, contact at 5.02 s) is tracked as a pedestrian and warned of by the
+// scenario's deadline (2.9 s), and the run reports the tracking.* and risk.* keys.
+TEST(RunnerTest, TracksTheChildAndWarnsByTheDeadline) {
+  sim::Scenario scenario = io::LoadScenarioFile(std::string(LOOKOUT_SOURCE_DIR) +
+                                                "/scenarios/child-behind-parked-car.yaml");
+  scenario.duration_s = 3.0;
+  Pipeline pipeline(PipelineOptions{});
+  const RunResult result = RunScenario(scenario, pipeline, RunOptions{});
+  ASSERT_NE(pipeline.tracking(), nullptr);
+  ASSERT_NE(pipeline.risk(), nullptr);
+  const auto& m = result.metrics.values;
+  for (const char* key : {"tracking.mota", "tracking.motp_m", "tracking.idf1",
+                          "tracking.id_switches", "tracking.gospa_m", "risk.warned",
+                          "risk.ttc_mae_s", "timing.tracking_ms_median", "timing.risk_ms_median"}) {
+    EXPECT_TRUE(m.contains(key)) << key;
+  }
+  EXPECT_EQ(m.at("risk.warned"), 1.0);
+  EXPECT_LE(m.at("risk.first_warning_s"), 2.9);
+  ASSERT_FALSE(result.warnings.empty());
+  EXPECT_EQ(result.warnings[0].level, risk::WarningLevel::kWarning);
+  EXPECT_EQ(result.warning_classes[0], ObjectClass::kPedestrian);
+  EXPECT_GT(m.at("tracking.recall"), 0.8) << "the child is tracked while in view";
+}
+
+}  // namespace
+}  // namespace lookout::app

@@ -163,6 +163,47 @@ JsonSchema LookoutEgoOdometrySchema() {
               {{"timestamp", Time()}, {"speed", Number()}, {"yaw_rate", Number()}});
 }
 
+JsonSchema LookoutRiskAssessmentSchema() {
+  const json nullable = {{"type", json::array({"number", "null"})}};
+  const json ego = Object({{"x", Number()},
+                           {"y", Number()},
+                           {"yaw", Number()},
+                           {"speed", Number()},
+                           {"acceleration", Number()},
+                           {"yaw_rate", Number()},
+                           {"route", {{"type", "boolean"}}}},
+                          "the ego as the risk stage interpreted it, odometry frame: m, rad, m/s, "
+                          "m/s^2, rad/s; route: predicted along its intended route");
+  const json object = Object({{"id", Number()},
+                              {"ttc", nullable},
+                              {"risk", Number()},
+                              {"collision_probability", Number()},
+                              {"pet", nullable}},
+                             "a confirmed track: TTC and PET in s (null: none in the horizon)");
+  return Make("lookout.RiskAssessment",
+              "One risk step (seed 004 VIII): per track its TTC, risk indicator, collision "
+              "probability and post-encroachment time; the risk of the earliest potential "
+              "collision and the warning level",
+              {{"timestamp", Time()},
+               {"ego", ego},
+               {"objects", ArrayOf(object)},
+               {"earliest", nullable},
+               {"risk", Number()},
+               {"dropped", Number()},
+               {"level", String()}});
+}
+
+JsonSchema LookoutWarningEventSchema() {
+  const json nullable = {{"type", json::array({"number", "null"})}};
+  return Make("lookout.WarningEvent",
+              "A change of the warning level (none, information, warning), naming the track of "
+              "the earliest potential collision and its TTC in s",
+              {{"timestamp", Time()},
+               {"level", String()},
+               {"object_id", nullable},
+               {"ttc", nullable}});
+}
+
 JsonSchema LookoutTruthFrameSchema() {
   const json state = Object({{"x", Number()},
                              {"y", Number()},

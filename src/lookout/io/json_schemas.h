@@ -22,5 +22,7 @@ JsonSchema FoxgloveGridSchema();
 JsonSchema LookoutStereoFrameSchema();
 JsonSchema LookoutEgoOdometrySchema();
 JsonSchema LookoutTruthFrameSchema();
+JsonSchema LookoutRiskAssessmentSchema();
+JsonSchema LookoutWarningEventSchema();
 
 }  // namespace lookout::io

@@ -419,6 +419,91 @@ json LidarObjectsSceneToJson(const LidarObjectFrame& frame, const std::string& f
           {"entities", std::move(entities)}};
 }
 
+json TracksSceneToJson(TimeNs t, const std::vector<tracking::Track>& tracks,
+                       const std::string& frame_id) {
+  constexpr double kArrowSeconds = 0.5;  // as the lidar objects' arrows
+  json entities = json::array();
+  for (const tracking::Track& track : tracks) {
+    json e = Entity(t, "track-" + std::to_string(track.id), frame_id);
+    json color = ColorForClass(track.object_class);
+    if (track.coasting) color["a"] = 0.35;
+    const Eigen::Vector2d p = track.Position(), v = track.Velocity();
+    e["cylinders"].push_back(Cylinder(p, 0.5, 0.2, color));
+    const double speed = v.norm();
+    if (speed > 0.0) {
+      const double length = speed * kArrowSeconds;
+      e["arrows"].push_back({{"pose", Pose3FromPose2(Pose2(p, std::atan2(v.y(), v.x())))},
+                             {"shaft_length", 0.8 * length},
+                             {"shaft_diameter", 0.1},
+                             {"head_length", 0.2 * length},
+                             {"head_diameter", 0.3},
+                             {"color", color}});
+    }
+    e["texts"].push_back({{"pose", Pose3FromPose2(Pose2(p, 0.0))},
+                          {"billboard", true},
+                          {"font_size", 12.0},
+                          {"scale_invariant", true},
+                          {"color", Color(1, 1, 1, 1)},
+                          {"text", std::to_string(track.id) + " " +
+                                       std::string(ToString(track.object_class))}});
+    e["metadata"] = json::array(
+        {Meta("class", std::string(ToString(track.object_class))),
+         Meta("position", json::array({p.x(), p.y()})),
+         Meta("velocity", json::array({v.x(), v.y()})),
+         Meta("position_covariance", Matrix2ToJson(track.state.cov.topLeftCorner<2, 2>())),
+         Meta("velocity_covariance", Matrix2ToJson(track.state.cov.block<2, 2>(2, 2))),
+         Meta("updates", track.updates),
+         Meta("misses", track.misses),
+         Meta("coasting", track.coasting)});
+    entities.push_back(std::move(e));
+  }
+  return {{"deletions", json::array({{{"timestamp", TimeToJson(t)}, {"type", 1}, {"id", ""}}})},
+          {"entities", std::move(entities)}};
+}
+
+namespace {
+
+json OptionalNumber(const std::optional<double>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+
+}  // namespace
+
+json RiskAssessmentToJson(TimeNs t, const risk::EgoInput& ego,
+                          const risk::RiskAssessment& assessment, risk::WarningLevel level) {
+  json objects = json::array();
+  for (const risk::ObjectRisk& o : assessment.objects) {
+    objects.push_back({{"id", o.id},
+                       {"ttc", OptionalNumber(o.ttc_s)},
+                       {"risk", o.risk},
+                       {"collision_probability", o.collision_probability},
+                       {"pet", OptionalNumber(o.pet_s)}});
+  }
+  const json earliest =
+      assessment.earliest ? json(assessment.objects[*assessment.earliest].id) : json(nullptr);
+  return {{"timestamp", TimeToJson(t)},
+          {"ego",
+           {{"x", ego.position_m.x()},
+            {"y", ego.position_m.y()},
+            {"yaw", ego.yaw_rad},
+            {"speed", ego.speed_mps},
+            {"acceleration", ego.acceleration_mps2},
+            {"yaw_rate", ego.yaw_rate_radps},
+            {"route", !ego.route_m.empty()}}},
+          {"objects", std::move(objects)},
+          {"earliest", earliest},
+          {"risk", assessment.risk},
+          {"dropped", assessment.dropped},
+          {"level", risk::ToString(level)}};
+}
+
+json WarningEventToJson(const risk::WarningEvent& event) {
+  return {{"timestamp", TimeToJson(event.stamp)},
+          {"level", risk::ToString(event.level)},
+          {"object_id", event.object_id ? json(*event.object_id) : json(nullptr)},
+          {"ttc", OptionalNumber(event.ttc_s)}};
+}
+
 json GridToJson(TimeNs t, const std::string& frame_id, const GridGeometry& geometry,
                 const std::vector<GridLayer8>& layers) {
   constexpr int kUint8 = 1;  // foxglove.NumericType

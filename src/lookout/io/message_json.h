@@ -10,8 +10,11 @@
 
 #include "lookout/core/grid_geometry.h"
 #include "lookout/core/messages.h"
+#include "lookout/risk/risk_assessment.h"
+#include "lookout/risk/warning_levels.h"
 #include "lookout/sim/shapes.h"
 #include "lookout/sim/truth.h"
+#include "lookout/tracking/tracker.h"
 
 namespace lookout::io {
 
@@ -46,6 +49,22 @@ nlohmann::json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes
 // white, the velocity as an arrow, a label "id class", and the object's numbers as metadata.
 // Each update first deletes every entity of the topic (object ids hold within a frame only).
 nlohmann::json LidarObjectsSceneToJson(const LidarObjectFrame& frame, const std::string& frame_id);
+
+// foxglove.SceneUpdate drawing the confirmed tracks in `frame_id` (the odometry frame): a
+// circle of the class's colour (dashed look: faint while coasting), the velocity as an arrow
+// (0.5 s long), a label "id class", and the track's numbers as metadata. Each update first
+// deletes every entity of the topic: a track that ended is gone.
+nlohmann::json TracksSceneToJson(TimeNs t, const std::vector<tracking::Track>& tracks,
+                                 const std::string& frame_id);
+
+// lookout.RiskAssessment: the ego as the risk stage interpreted it, and per object its TTC,
+// risk, collision probability and PET, the overall risk and the warning level (odometry frame).
+nlohmann::json RiskAssessmentToJson(TimeNs t, const risk::EgoInput& ego,
+                                    const risk::RiskAssessment& assessment,
+                                    risk::WarningLevel level);
+
+// lookout.WarningEvent: a change of warning level, the object and its TTC (null when none).
+nlohmann::json WarningEventToJson(const risk::WarningEvent& event);
 
 // One byte per cell of a grid layer, in GridGeometry order (row 0 at the lowest y).
 struct GridLayer8 {

@@ -32,6 +32,9 @@ Recorder::Recorder(const std::string& path, McapWriterOptions options)
   world_ = writer_.AddChannel(scene_id, topics::kWorldStatic, "json");
   grid_ = AddJsonChannel(writer_, topics::kGridBelief, FoxgloveGridSchema());
   lidar_objects_ = writer_.AddChannel(scene_id, topics::kLidarObjects, "json");
+  tracks_ = writer_.AddChannel(scene_id, topics::kTracks, "json");
+  risk_ = AddJsonChannel(writer_, topics::kRiskAssessment, LookoutRiskAssessmentSchema());
+  warnings_ = AddJsonChannel(writer_, topics::kRiskWarnings, LookoutWarningEventSchema());
 }
 
 void Recorder::Emit(std::uint16_t channel, const char* topic, TimeNs t,
@@ -76,6 +79,19 @@ void Recorder::Write(const sim::TruthFrame& truth) {
 void Recorder::Write(const LidarObjectFrame& objects) {
   Emit(lidar_objects_, topics::kLidarObjects, objects.stamp,
        LidarObjectsSceneToJson(objects, frames::kVehicle));
+}
+
+void Recorder::Write(TimeNs t, const std::vector<tracking::Track>& tracks) {
+  Emit(tracks_, topics::kTracks, t, TracksSceneToJson(t, tracks, frames::kOdom));
+}
+
+void Recorder::Write(TimeNs t, const risk::EgoInput& ego, const risk::RiskAssessment& assessment,
+                     risk::WarningLevel level) {
+  Emit(risk_, topics::kRiskAssessment, t, RiskAssessmentToJson(t, ego, assessment, level));
+}
+
+void Recorder::Write(const risk::WarningEvent& event) {
+  Emit(warnings_, topics::kRiskWarnings, event.stamp, WarningEventToJson(event));
 }
 
 void Recorder::WriteTransform(TimeNs t, const char* parent, const char* child, const Pose2& pose) {

@@ -30,6 +30,9 @@ inline constexpr const char* kTruthScene = "/truth/scene";
 inline constexpr const char* kWorldStatic = "/world/static";
 inline constexpr const char* kGridBelief = "/grid/belief";
 inline constexpr const char* kLidarObjects = "/lidar/objects";
+inline constexpr const char* kTracks = "/tracks";
+inline constexpr const char* kRiskAssessment = "/risk/assessment";
+inline constexpr const char* kRiskWarnings = "/risk/warnings";
 }  // namespace topics
 
 // Frame names (docs/conventions.md).
@@ -63,6 +66,13 @@ class Recorder {
   // The lidar objects of one cycle as a foxglove.SceneUpdate in the vehicle frame.
   void Write(const LidarObjectFrame& objects);
 
+  // The confirmed tracks of one cycle as a foxglove.SceneUpdate in the odometry frame.
+  void Write(TimeNs t, const std::vector<tracking::Track>& tracks);
+  // One risk step, and a change of warning level.
+  void Write(TimeNs t, const risk::EgoInput& ego, const risk::RiskAssessment& assessment,
+             risk::WarningLevel level);
+  void Write(const risk::WarningEvent& event);
+
   // Messages written per topic so far.
   const std::map<std::string, std::uint64_t>& message_counts() const { return counts_; }
 
@@ -74,7 +84,8 @@ class Recorder {
   McapWriter writer_;
   std::map<std::string, std::uint64_t> counts_;
   std::uint16_t lidar_ = 0, stereo_ = 0, odometry_ = 0, tf_ = 0, truth_ego_ = 0,
-                truth_actors_ = 0, truth_scene_ = 0, world_ = 0, grid_ = 0, lidar_objects_ = 0;
+                truth_actors_ = 0, truth_scene_ = 0, world_ = 0, grid_ = 0, lidar_objects_ = 0,
+                tracks_ = 0, risk_ = 0, warnings_ = 0;
 };
 
 }  // namespace lookout::io

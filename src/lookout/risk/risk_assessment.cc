@@ -7,6 +7,7 @@
 #include "lookout/core/random.h"
 #include "lookout/risk/bicycle_model.h"
 #include "lookout/risk/risk_indicators.h"
+#include "lookout/risk/route_prediction.h"
 
 namespace lookout::risk {
 namespace {
@@ -72,6 +73,15 @@ double RiskIndicator(std::optional<double> ttc_s, const RiskOptions& options) {
 }
 
 CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options) {
+  if (!ego.route_m.empty()) {
+    const std::vector<Eigen::Vector2d> path =
+        PredictAlongRoute(ego.route_m, ego.position_m, ego.speed_mps, ego.acceleration_mps2,
+                          options.horizon_s, options.step_s);
+    std::vector<BicycleState> states;
+    states.reserve(path.size());
+    for (const Eigen::Vector2d& p : path) states.push_back({p.x(), p.y(), 0.0, 0.0, 0.0});
+    return CirclesAlong(states, options.ego_radius_m, options.growth_per_metre);
+  }
   BicycleState s{ego.position_m.x(), ego.position_m.y(), ego.yaw_rad, ego.speed_mps, 0.0};
   BicycleInputs u;
   if (options.hold_yaw_rate) {

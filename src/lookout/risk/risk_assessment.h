@@ -35,6 +35,9 @@ struct EgoInput {
   double speed_mps = 0.0;
   double acceleration_mps2 = 0.0;
   double yaw_rate_radps = 0.0;
+  // The intended route (route_prediction.h), in the same frame; empty: none known, the ego is
+  // predicted from its state by the bicycle model.
+  std::vector<Eigen::Vector2d> route_m;
 };
 
 // A tracked object in the same frame.

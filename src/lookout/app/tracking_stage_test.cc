@@ -1,0 +1,178 @@
+#include "lookout/app/tracking_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::app {
+namespace {
+
+std::array<double, kAllObjectClasses.size()> Certain(ObjectClass c, double p = 1.0) {
+  std::array<double, kAllObjectClasses.size()> pmf{};
+  const double rest = (1.0 - p) / static_cast<double>(pmf.size() - 1);
+  for (std::size_t i = 0; i < pmf.size(); ++i) {
+    pmf[i] = kAllObjectClasses[i] == c ? p : rest;
+  }
+  return pmf;
+}
+
+// An object whose seen side runs from `a` to `b` (vehicle frame), seen by the camera.
+fusion::FusedObject Object(ObjectClass c, Eigen::Vector2d a, Eigen::Vector2d b) {
+  fusion::FusedObject o;
+  o.front_start_m = a;
+  o.front_end_m = b;
+  o.point_m = 0.5 * (a + b);
+  o.point_covariance = 0.01 * Eigen::Matrix2d::Identity();
+  o.class_pmf = Certain(c);
+  o.sensor_count = 2;
+  o.stereo_id = 7;
+  o.dynamic = true;
+  return o;
+}
+
+fusion::FusedObjectFrame Frame(TimeNs stamp, std::vector<fusion::FusedObject> objects,
+                               Pose2 ego = Pose2()) {
+  fusion::FusedObjectFrame f;
+  f.stamp = stamp;
+  f.ego_pose = ego;
+  f.objects = std::move(objects);
+  return f;
+}
+
+// A car broadside on, 20 m ahead: its long side faces the lidar, the centre is half a width
+// behind it. End on, the short side faces the lidar: half a length behind.
+TEST(DetectionsFromFusedObjectsTest, CentreIsHalfTheDepthBehindTheSeenSide) {
+  const DetectionOptions options;
+  const auto side_on = DetectionsFromFusedObjects(
+      Frame(0, {Object(ObjectClass::kCar, {20.0, -2.25}, {20.0, 2.25})}), options);
+  ASSERT_EQ(side_on.size(), 1u);
+  EXPECT_NEAR(side_on[0].position_m.x(), 20.9, 1e-12);
+  EXPECT_NEAR(side_on[0].position_m.y(), 0.0, 1e-12);
+  const auto end_on = DetectionsFromFusedObjects(
+      Frame(0, {Object(ObjectClass::kCar, {20.0, 0.9}, {20.0, -0.9})}), options);
+  ASSERT_EQ(end_on.size(), 1u);
+  EXPECT_NEAR(end_on[0].position_m.x(), 22.25, 1e-12);
+  // Behind the ego (a side seen from the other direction) the centre is further behind.
+  const auto behind = DetectionsFromFusedObjects(
+      Frame(0, {Object(ObjectClass::kCar, {-20.0, 0.9}, {-20.0, -0.9})}), options);
+  EXPECT_NEAR(behind[0].position_m.x(), -22.25, 1e-12);
+  // A pedestrian: a radius behind, along the line of sight (its segment is its width).
+  const auto walker = DetectionsFromFusedObjects(
+      Frame(0, {Object(ObjectClass::kPedestrian, {3.0, 4.3}, {3.0, 3.7})}), options);
+  EXPECT_NEAR(walker[0].position_m.x(), 3.3, 1e-12);
+  EXPECT_EQ(walker[0].object_class, ObjectClass::kPedestrian);
+  EXPECT_EQ(walker[0].sensors, 2);
+}
+
+// Detections are in the odometry frame: the frame's ego pose carries point and covariance.
+TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
+  fusion::FusedObject o = Object(ObjectClass::kUnknown, {10.0, 0.0}, {10.0, 0.0});
+  o.point_covariance << 4.0, 0.0, 0.0, 1.0;
+  DetectionOptions options;
+  options.centre_offset_sigma_m = 0.0;
+  const Pose2 ego(5.0, -3.0, kPi / 2.0);
+  const auto d = DetectionsFromFusedObjects(Frame(0, {o}, ego), options);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR(d[0].position_m.x(), 5.0, 1e-12);
+  EXPECT_NEAR(d[0].position_m.y(), 7.0, 1e-12);
+  EXPECT_NEAR(d[0].covariance(0, 0), 1.0, 1e-12);  // the long axis now lies along y
+  EXPECT_NEAR(d[0].covariance(1, 1), 4.0, 1e-12);
+}
+
+TEST(DetectionsFromFusedObjectsTest, LeavesOutPolesAndStaticLidarOnlyObjects) {
+  fusion::FusedObject pole = Object(ObjectClass::kPole, {5.0, 0.0}, {5.0, 0.2});
+  fusion::FusedObject parked = Object(ObjectClass::kCar, {8.0, 3.0}, {12.0, 3.0});
+  parked.stereo_id.reset();
+  parked.sensor_count = 1;
+  parked.dynamic = false;
+  fusion::FusedObject standing = Object(ObjectClass::kPedestrian, {6.0, 1.0}, {6.0, 1.6});
+  standing.dynamic = false;  // seen by the camera: a road user standing still stays in
+  const auto d = DetectionsFromFusedObjects(Frame(0, {pole, parked, standing}), {});
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].object_class, ObjectClass::kPedestrian);
+  DetectionOptions keep;
+  keep.keep_static_lidar_objects = true;
+  EXPECT_EQ(DetectionsFromFusedObjects(Frame(0, {pole, parked, standing}), keep).size(), 2u);
+}
+
+// One frame in which the camera calls its pedestrian a car does not change the class.
+TEST(CameraClassHistoryTest, OneConfusedFrameKeepsTheClassOfTheCamerasTrack) {
+  CameraClassHistory history;
+  fusion::FusedObject o = Object(ObjectClass::kPedestrian, {6.0, 1.0}, {6.0, 1.6});
+  o.class_pmf = Certain(ObjectClass::kPedestrian, 0.9);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(history.Update(Frame(FromSeconds(0.05 * k), {o}))[0], ObjectClass::kPedestrian);
+  }
+  o.class_pmf = Certain(ObjectClass::kCar, 0.9);
+  EXPECT_EQ(history.Update(Frame(FromSeconds(0.15), {o}))[0], ObjectClass::kPedestrian);
+  // Another camera track id has its own history; a lidar-only object keeps its own class.
+  o.stereo_id = 8;
+  EXPECT_EQ(history.Update(Frame(FromSeconds(0.2), {o}))[0], ObjectClass::kCar);
+  o.stereo_id.reset();
+  EXPECT_EQ(history.Update(Frame(FromSeconds(0.25), {o}))[0], ObjectClass::kCar);
+  // An id unseen for longer than the memory starts afresh.
+  o.stereo_id = 7;
+  EXPECT_EQ(history.Update(Frame(FromSeconds(2.0), {o}))[0], ObjectClass::kCar);
+}
+
+// A walker crossing at 1.5 m/s, seen by both sensors every 80 ms: confirmed at its first update
+// after the one that started it, then followed; time going backwards and NaN objects are
+// refused or dropped with a warning, never a crash; empty frames make the track coast.
+TEST(TrackingStageTest, TracksAWalkerAndRefusesBadInputWithAWarning) {
+  TrackingStage stage;
+  auto walker_at = [](double t) {
+    const double y = -5.0 + 1.5 * t;
+    return Object(ObjectClass::kPedestrian, {10.0, y - 0.3}, {10.0, y + 0.3});
+  };
+  for (int k = 0; k < 10; ++k) {
+    const double t = 0.08 * k;
+    stage.Step(Frame(FromSeconds(t), {walker_at(t)}));
+  }
+  ASSERT_EQ(stage.tracks().size(), 1u);
+  const tracking::Track track = stage.tracks()[0];
+  EXPECT_NEAR(track.Position().x(), 10.3, 0.1);
+  EXPECT_NEAR(track.Position().y(), -5.0 + 1.5 * 0.72, 0.1);
+  EXPECT_NEAR(track.Velocity().y(), 1.5, 0.3);
+  EXPECT_EQ(stage.warning_count(), 0);
+
+  stage.Step(Frame(FromSeconds(0.5), {walker_at(0.5)}));  // back in time
+  EXPECT_EQ(stage.warning_count(), 1);
+  ASSERT_EQ(stage.warnings().size(), 1u);
+  EXPECT_NE(stage.warnings()[0].find("refused"), std::string::npos) << stage.warnings()[0];
+  EXPECT_EQ(stage.last_stamp(), FromSeconds(0.72));
+  ASSERT_EQ(stage.tracks().size(), 1u);
+  EXPECT_EQ(stage.tracks()[0].stamp, track.stamp) << "a refused frame changes nothing";
+
+  fusion::FusedObject broken = walker_at(0.8);
+  broken.point_m.x() = std::numeric_limits<double>::quiet_NaN();
+  stage.Step(Frame(FromSeconds(0.8), {broken, walker_at(0.8)}));
+  EXPECT_EQ(stage.warning_count(), 2);
+  EXPECT_NE(stage.warnings()[1].find("dropped"), std::string::npos) << stage.warnings()[1];
+  EXPECT_EQ(stage.tracker().dropped_detections(), 1);
+  ASSERT_EQ(stage.tracks().size(), 1u);
+
+  stage.Step(Frame(FromSeconds(0.88), {}));
+  ASSERT_EQ(stage.tracks().size(), 1u);
+  EXPECT_TRUE(stage.tracks()[0].coasting);
+  EXPECT_EQ(stage.step_ms().size(), 13u);
+  EXPECT_EQ(stage.baseline(), nullptr) << "the GNN needs no GNN beside it";
+}
+
+TEST(TrackingStageTest, OptionsNameTheBadField) {
+  TrackingStageOptions o;
+  o.detections.car_width_m = 0.0;
+  try {
+    o.Validate();
+    FAIL() << "accepted a zero car width";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("car_width_m"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ParseTrackerKind("gnn"), TrackerKind::kGnn);
+  EXPECT_FALSE(ParseTrackerKind("kalman").has_value());
+}
+
+}  // namespace
+}  // namespace lookout::app
