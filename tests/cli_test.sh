@@ -74,14 +74,17 @@ case "$case_name" in
       const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
       // 12 s: lidar 12.5 Hz -> 151 frames, stereo 20 Hz -> 241, odometry 50 Hz -> 601; the grid
       // every fifth lidar frame -> 31; /tf: two mounts, world -> odom, and one per lidar frame;
-      // the grid objects at every lidar frame -> 151.
+      // the grid objects, the tracks and the risk step at every lidar frame -> 151; the warning
+      // events: at least the warning of the turning car.
       const want = {"/lidar/scan": 151, "/stereo/objects": 241, "/odometry": 601,
                     "/truth/actors": 151, "/truth/scene": 151, "/truth/ego": 151,
-                    "/tf": 154, "/world/static": 1, "/grid/belief": 31, "/lidar/objects": 151};
+                    "/tf": 154, "/world/static": 1, "/grid/belief": 31, "/lidar/objects": 151,
+                    "/tracks": 151, "/risk/assessment": 151};
       for (const [topic, n] of Object.entries(want)) {
         if (r.topics[topic] !== n) { console.error(`${topic}: ${r.topics[topic]} != ${n}`); process.exit(1); }
       }
-      if (Object.keys(r.topics).length !== Object.keys(want).length) { console.error("extra topics"); process.exit(1); }
+      if (!(r.topics["/risk/warnings"] >= 1)) { console.error("no warning event"); process.exit(1); }
+      if (Object.keys(r.topics).length !== Object.keys(want).length + 1) { console.error("extra topics"); process.exit(1); }
     ' "$work/read.json" || fail "reference reader counts: $(cat "$work/read.json")"
     ;;
   catalogue)
