@@ -72,15 +72,17 @@ std::vector<ObjectClass> CameraClassHistory::Update(const fusion::FusedObjectFra
 }
 
 std::optional<TrackerKind> ParseTrackerKind(const std::string& name) {
+  if (name == "mht") return TrackerKind::kMht;
   if (name == "gnn") return TrackerKind::kGnn;
   return std::nullopt;
 }
 
 const char* ToString(TrackerKind kind) {
   switch (kind) {
+    case TrackerKind::kMht: return "mht";
     case TrackerKind::kGnn: return "gnn";
   }
-  return "gnn";
+  return "mht";
 }
 
 void DetectionOptions::Validate(const std::string& source) const {
@@ -101,6 +103,7 @@ void DetectionOptions::Validate(const std::string& source) const {
 }
 
 void TrackingStageOptions::Validate(const std::string& source) const {
+  mht.Validate(source + ": mht");
   gnn.Validate(source + ": gnn");
   detections.Validate(source + ": detections");
 }
@@ -146,6 +149,7 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
 TrackingStage::TrackingStage(const TrackingStageOptions& options) : options_(options) {
   options_.Validate();
   switch (options_.tracker) {
+    case TrackerKind::kMht: tracker_ = std::make_unique<tracking::MhtTracker>(options_.mht); break;
     case TrackerKind::kGnn: tracker_ = std::make_unique<tracking::GnnTracker>(options_.gnn); break;
   }
   if (options_.baseline && options_.tracker != TrackerKind::kGnn) {

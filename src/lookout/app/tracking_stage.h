@@ -2,8 +2,9 @@
 
 // Tracking as a pipeline stage (seed 004 section VII): each cycle's fused objects (vehicle frame
 // at the lidar stamp) become detections in the ground-fixed odometry frame, through the frame's
-// ego pose, and go to a tracking::Tracker chosen by option. A second tracker, the GNN baseline,
-// can run beside it on the same detections, so that every metric table has both.
+// ego pose, and go to a tracking::Tracker chosen by option: Reid's MHT with the IMM
+// (tracking/mht_tracker.h, the default) or the GNN baseline (tracking/gnn_tracker.h). The GNN
+// runs beside the MHT on the same detections, so that every metric table has both.
 //
 // Which point is tracked: the object's centre. Both sensors report the middle of the side that
 // faces the lidar (the front segment, seed 004 VI), which moves over the object as the view
@@ -34,13 +35,14 @@
 
 #include "lookout/fusion/fused_object.h"
 #include "lookout/tracking/gnn_tracker.h"
+#include "lookout/tracking/mht_tracker.h"
 #include "lookout/tracking/tracker.h"
 
 namespace lookout::app {
 
-enum class TrackerKind { kGnn };
+enum class TrackerKind { kMht, kGnn };
 
-// "gnn"; nullopt for an unknown name.
+// "mht", "gnn"; nullopt for an unknown name.
 std::optional<TrackerKind> ParseTrackerKind(const std::string& name);
 const char* ToString(TrackerKind kind);
 
@@ -90,9 +92,10 @@ class CameraClassHistory {
 };
 
 struct TrackingStageOptions {
-  TrackerKind tracker = TrackerKind::kGnn;
+  TrackerKind tracker = TrackerKind::kMht;
   // Run the GNN baseline beside the tracker (nothing to compare when the tracker is the GNN).
   bool baseline = true;
+  tracking::MhtOptions mht;
   tracking::GnnOptions gnn;
   DetectionOptions detections;
 

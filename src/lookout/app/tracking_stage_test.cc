@@ -121,8 +121,13 @@ TEST(CameraClassHistoryTest, OneConfusedFrameKeepsTheClassOfTheCamerasTrack) {
 // A walker crossing at 1.5 m/s, seen by both sensors every 80 ms: confirmed at its first update
 // after the one that started it, then followed; time going backwards and NaN objects are
 // refused or dropped with a warning, never a crash; empty frames make the track coast.
-TEST(TrackingStageTest, TracksAWalkerAndRefusesBadInputWithAWarning) {
-  TrackingStage stage;
+// Both trackers, each as the stage's tracker.
+class TrackingStageTest : public ::testing::TestWithParam<TrackerKind> {};
+
+TEST_P(TrackingStageTest, TracksAWalkerAndRefusesBadInputWithAWarning) {
+  TrackingStageOptions options;
+  options.tracker = GetParam();
+  TrackingStage stage(options);
   auto walker_at = [](double t) {
     const double y = -5.0 + 1.5 * t;
     return Object(ObjectClass::kPedestrian, {10.0, y - 0.3}, {10.0, y + 0.3});
@@ -158,10 +163,28 @@ TEST(TrackingStageTest, TracksAWalkerAndRefusesBadInputWithAWarning) {
   ASSERT_EQ(stage.tracks().size(), 1u);
   EXPECT_TRUE(stage.tracks()[0].coasting);
   EXPECT_EQ(stage.step_ms().size(), 13u);
-  EXPECT_EQ(stage.baseline(), nullptr) << "the GNN needs no GNN beside it";
+  if (GetParam() == TrackerKind::kGnn) {
+    EXPECT_EQ(stage.baseline(), nullptr) << "the GNN needs no GNN beside it";
+  } else {
+    ASSERT_NE(stage.baseline(), nullptr);
+    ASSERT_EQ(stage.baseline_tracks().size(), 1u);
+    EXPECT_NEAR(stage.baseline_tracks()[0].Position().y(), -5.0 + 1.5 * 0.88, 0.2);
+    EXPECT_EQ(stage.baseline_step_ms().size(), 13u);
+  }
 }
 
-TEST(TrackingStageTest, OptionsNameTheBadField) {
+INSTANTIATE_TEST_SUITE_P(Trackers, TrackingStageTest,
+                         ::testing::Values(TrackerKind::kMht, TrackerKind::kGnn),
+                         [](const auto& param_info) { return std::string(ToString(param_info.param)); });
+
+TEST(TrackingStageDefaultsTest, TheMhtTracksWithTheGnnBesideIt) {
+  const TrackingStage stage;
+  EXPECT_EQ(stage.kind(), TrackerKind::kMht);
+  EXPECT_NE(dynamic_cast<const tracking::MhtTracker*>(&stage.tracker()), nullptr);
+  EXPECT_NE(dynamic_cast<const tracking::GnnTracker*>(stage.baseline()), nullptr);
+}
+
+TEST(TrackingStageOptionsTest, OptionsNameTheBadField) {
   TrackingStageOptions o;
   o.detections.car_width_m = 0.0;
   try {
@@ -170,6 +193,15 @@ TEST(TrackingStageTest, OptionsNameTheBadField) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("car_width_m"), std::string::npos) << e.what();
   }
+  o.detections.car_width_m = 1.8;
+  o.mht.hypotheses_m = 0;
+  try {
+    o.Validate();
+    FAIL() << "accepted m = 0";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hypotheses_m"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ParseTrackerKind("mht"), TrackerKind::kMht);
   EXPECT_EQ(ParseTrackerKind("gnn"), TrackerKind::kGnn);
   EXPECT_FALSE(ParseTrackerKind("kalman").has_value());
 }
