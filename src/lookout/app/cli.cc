@@ -94,7 +94,7 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
 }
 
 int Run(const std::string& scenario_path, std::string out_dir, int threads,
-        std::optional<double> snapshot_s) {
+        std::optional<double> snapshot_s, double snapshot_max_speed_mps) {
   ValidateThreads(threads);
   const sim::Scenario scenario =
       scenario_path.empty() ? io::LoadDefaultScenario() : io::LoadScenarioFile(scenario_path);
@@ -103,6 +103,9 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
                      *snapshot_s > scenario.duration_s)) {
     throw InputError("--snapshot", 0, "snapshot",
                      fmt::format("must be a time within the scenario, 0 to {} s", scenario.duration_s));
+  }
+  if (!std::isfinite(snapshot_max_speed_mps) || snapshot_max_speed_mps <= 0.0) {
+    throw InputError("--snapshot-max-speed", 0, "snapshot-max-speed", "must be a speed > 0 m/s");
   }
   if (out_dir.empty()) out_dir = (std::filesystem::path("lookout-out") / scenario.name).string();
   EnsureOutputDirectory(out_dir, "--out");
@@ -115,6 +118,7 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
   options.recording_path = recording;
   options.snapshot_s = snapshot_s;
   options.snapshot_dir = out_dir;
+  options.snapshot_max_speed_mps = snapshot_max_speed_mps;
   options.progress = ProgressLine(scenario.name);
   const RunResult result = RunScenario(scenario, pipeline, options);
   if (options.progress) std::cerr << "\n";
@@ -229,7 +233,11 @@ int RunCli(int argc, char** argv) {
   run->add_option("--out", run_out, "Output directory (default lookout-out/NAME)");
   run->add_option("--threads", threads, "Worker threads (the output does not depend on it)");
   std::optional<double> snapshot_s;
-  run->add_option("--snapshot", snapshot_s, "Write PNGs of the grid (occupancy, speed map) at T s");
+  run->add_option("--snapshot", snapshot_s,
+                  "Write PNGs of the grid (occupancy, speed map, class map) at T s");
+  double snapshot_max_speed_mps = 20.0;
+  run->add_option("--snapshot-max-speed", snapshot_max_speed_mps,
+                  "Speed (m/s) at which the snapshot's speed map is full bright (default 20)");
 
   std::vector<std::string> eval_scenarios;
   std::string eval_json;
@@ -262,7 +270,7 @@ int RunCli(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return Run(run_scenario, run_out, threads, snapshot_s);
+    if (run->parsed()) return Run(run_scenario, run_out, threads, snapshot_s, snapshot_max_speed_mps);
     if (eval_cmd->parsed()) return Eval(eval_scenarios, eval_json, threads);
     if (bench->parsed()) return Bench(bench_json);
     if (slam->parsed()) return RunSlamCommand(slam_options);

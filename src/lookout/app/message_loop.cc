@@ -6,7 +6,7 @@
 #include <limits>
 #include <utility>
 
-#include "lookout/app/grid_scoring.h"
+#include "lookout/app/grid_recording.h"
 
 namespace lookout::app {
 namespace {
@@ -15,20 +15,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The grid's belief as the recording's uint8 layers: occupancy x 255, and speed over 0-20 m/s.
-std::vector<io::GridLayer8> GridLayersToRecord(const eval::GridBelief& b) {
-  std::vector<std::uint8_t> occupancy, speed;
-  occupancy.reserve(b.occupancy.size());
-  speed.reserve(b.occupancy.size());
-  for (std::size_t i = 0; i < b.occupancy.size(); ++i) {
-    const double o = std::clamp(static_cast<double>(b.occupancy[i]), 0.0, 1.0);
-    const double v = static_cast<double>(std::hypot(b.velocity_x_mps[i], b.velocity_y_mps[i]));
-    occupancy.push_back(static_cast<std::uint8_t>(std::lround(255.0 * o)));
-    speed.push_back(static_cast<std::uint8_t>(std::lround(255.0 * std::min(v / 20.0, 1.0))));
-  }
-  return {{"occupancy", std::move(occupancy)}, {"speed", std::move(speed)}};
 }
 
 }  // namespace
@@ -87,8 +73,8 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
           }
         }
         if (pipeline.grid() && k % kRecordGridEvery == 0) {
-          const eval::GridBelief belief = BeliefOf(pipeline.grid()->grid());
-          recorder->WriteGrid(scan.stamp, belief.geometry, GridLayersToRecord(belief));
+          const grid::ExtendedGrid& g = pipeline.grid()->grid();
+          recorder->WriteGrid(scan.stamp, g.geometry().WindowGeometry(), GridLayersToRecord(g));
         }
       }
       if (options.after_cycle) {

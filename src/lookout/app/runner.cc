@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <vector>
 
 #include <tbb/task_arena.h>
 
+#include "lookout/app/grid_recording.h"
 #include "lookout/app/grid_scoring.h"
 #include "lookout/app/lidar_object_scoring.h"
 #include "lookout/app/risk_scoring.h"
@@ -27,16 +29,23 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The grid at one instant as PNG images: occupancy, and the speed map of the paper's Fig. 6
-// (hue = direction, brightness = speed).
-std::vector<std::string> WriteSnapshot(const grid::ExtendedGrid& grid, const std::string& dir,
+// The grid at one instant as PNG images: occupancy, the speed map of the paper's Fig. 6
+// (hue = direction, brightness = speed), and the most likely class of each occupied cell.
+std::vector<std::string> WriteSnapshot(const grid::ExtendedGrid& grid, const RunOptions& options,
                                        TimeNs stamp) {
   const eval::GridBelief b = BeliefOf(grid);
-  const std::string stem = fmt::format("{}/snapshot-{:.2f}s", dir, ToSeconds(stamp));
-  const std::vector<std::string> files = {stem + "-occupancy.png", stem + "-speed.png"};
+  const std::string stem = fmt::format("{}/snapshot-{:.2f}s", options.snapshot_dir, ToSeconds(stamp));
+  const std::vector<std::string> files = {stem + "-occupancy.png", stem + "-speed.png",
+                                          stem + "-class.png"};
   io::WritePng(files[0], io::RenderOccupancy(b.geometry, b.occupancy));
+  io::SpeedMapOptions speed;
+  speed.max_speed_mps = options.snapshot_max_speed_mps;
   io::WritePng(files[1], io::RenderSpeedMap(b.geometry, b.velocity_x_mps, b.velocity_y_mps,
-                                            b.occupancy, b.velocity_confidence));
+                                            b.occupancy, b.velocity_confidence, speed));
+  const std::vector<io::GridLayer8> layers = GridLayersToRecord(grid);
+  const auto class_layer = std::find_if(layers.begin(), layers.end(),
+                                        [](const io::GridLayer8& l) { return l.name == "class"; });
+  io::WritePng(files[2], io::RenderClassMap(b.geometry, class_layer->values, b.occupancy));
   return files;
 }
 
@@ -138,7 +147,7 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
     }
     if (snapshot_due && cycle.scan->stamp >= snapshot_at) {
       result.snapshots =
-          WriteSnapshot(pipeline.grid()->grid(), options.snapshot_dir, cycle.scan->stamp);
+          WriteSnapshot(pipeline.grid()->grid(), options, cycle.scan->stamp);
       snapshot_due = false;
     }
     if (recorder) recorder->Write(truth);

@@ -24,10 +24,13 @@ struct RunOptions {
   std::optional<std::string> recording_path;   // none: record nothing
   // Called after each lidar cycle with the simulated time and the scenario's duration.
   std::function<void(double t_s, double duration_s)> progress;
-  // Write PNG images of the grid (occupancy, speed map) at the first lidar cycle at or after
+  // Write PNG images of the grid (occupancy, speed map, class map) at the first lidar cycle at or after
   // this time, into snapshot_dir.
   std::optional<double> snapshot_s;
   std::string snapshot_dir = ".";
+  // The speed map's brightness saturates at this speed (io::SpeedMapOptions): 20 m/s shows
+  // cars, a few m/s shows pedestrians.
+  double snapshot_max_speed_mps = 20.0;
 };
 
 struct RunResult {
