@@ -22,12 +22,14 @@
 #include <tbb/task_arena.h>
 
 #include "bench_scans.h"
+#include "lookout/app/stage_benchmarks.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/pose2.h"
 #include "lookout/grid/extended_grid.h"
 #include "lookout/grid/inverse_sensor_model.h"
 #include "lookout/grid/reference_filter.h"
 #include "lookout/grid/scrolling_grid.h"
+#include "lookout/io/scenario_loader.h"
 
 namespace lookout::grid {
 namespace {
@@ -149,6 +151,68 @@ void BM_ReferenceUpdate(benchmark::State& state) {
   MeasureReferenceUpdate(state, warm);
 }
 BENCHMARK(BM_ReferenceUpdate)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+// The same pair on the simulator's junction (the default scenario at t = 4 s, the grid having
+// run every earlier scan: the input of `lookout bench`): real scans give thousands of sources
+// along the building walls. Arg = TBB threads; the output of every thread count is checked
+// against the one-thread output, byte for byte (the benchmark fails if they differ).
+const app::GridCycleInput& SimJunction() {
+  static const app::GridCycleInput input = app::PrepareGridCycle(io::LoadDefaultScenario(), 4.0);
+  return input;
+}
+
+std::vector<float> AllLayers(const ExtendedGrid& grid) {
+  std::vector<float> out;
+  const GridLayers& layers = grid.layers();
+  for (int id = 0; id < layers.LayerCount(); ++id) {
+    const auto v = layers.Values(LayerId{id});
+    out.insert(out.end(), v.begin(), v.end());
+  }
+  return out;
+}
+
+void BM_ExtendedGridUpdateSimJunction(benchmark::State& state) {
+  const app::GridCycleInput& input = SimJunction();
+  static const std::vector<float> one_thread = [&] {
+    tbb::task_arena one(1);
+    ExtendedGrid g = input.before;
+    one.execute([&] { g.Update(input.z, input.dt_s); });
+    return AllLayers(g);
+  }();
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  ExtendedGrid grid = input.before;
+  for (auto _ : state) {
+    state.PauseTiming();
+    grid = input.before;
+    state.ResumeTiming();
+    arena.execute([&] { grid.Update(input.z, input.dt_s); });
+  }
+  if (AllLayers(grid) != one_thread) {
+    state.SkipWithError("the output differs from the one-thread output");
+    return;
+  }
+  Counters(state, grid);
+}
+BENCHMARK(BM_ExtendedGridUpdateSimJunction)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_ReferenceUpdateSimJunction(benchmark::State& state) {
+  const app::GridCycleInput& input = SimJunction();
+  GridLayers layers = input.before.layers();
+  for (auto _ : state) {
+    state.PauseTiming();
+    layers = input.before.layers();
+    state.ResumeTiming();
+    ReferenceUpdate(layers, input.before.ids(), input.z, input.dt_s, input.before.options());
+  }
+  ExtendedGrid after = input.before;
+  after.Update(input.z, input.dt_s);
+  Counters(state, after);
+}
+BENCHMARK(BM_ReferenceUpdateSimJunction)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // The side-by-side pair on a 100 x 100 window (15 m, centred on the junction) of the same scene.
 constexpr int kSmallSide = 100;

@@ -3,7 +3,9 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
@@ -26,8 +28,7 @@ double MsSince(Clock::time_point start) {
 
 }  // namespace
 
-GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, int repetitions,
-                                  int reference_repetitions) {
+GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s) {
   const sim::Simulator simulator(scenario);
   const sim::SensorLog log = simulator.Run(1);
   GridStage stage;
@@ -44,22 +45,27 @@ GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, in
     }
     stage.OnLidar(log.lidar[k]);
   }
-  if (!timed) throw std::invalid_argument("MeasureGridCycle: no lidar frame after at_s");
+  if (!timed) throw std::invalid_argument("PrepareGridCycle: no lidar frame after at_s");
   const std::size_t k = *timed;
-  const GridStage before = stage;  // the state the timed update starts from
-  stage.OnLidar(log.lidar[k]);     // computes the measurement in this cycle's window
+  grid::ExtendedGrid before = stage.grid();  // the state the timed update starts from
+  stage.OnLidar(log.lidar[k]);               // computes the measurement in this cycle's window
   const grid::MeasurementGrid& z = stage.last_measurement();
-  const double dt_s = ToSeconds(log.lidar[k].stamp - log.lidar[k - 1].stamp);
-  // The window of the measurement: recentre a copy on the centre cell of z's window.
+  // The window of the measurement: recentre the state on the centre cell of z's window.
   const grid::ScrollingGridGeometry& zg = z.geometry;
   const CellIndex centre{zg.window_origin().ix + zg.width() / 2,
                          zg.window_origin().iy + zg.height() / 2};
-  auto fresh_copy = [&] {
-    grid::ExtendedGrid g = before.grid();
-    g.Recenter(zg.CellCenterM(centre));
-    assert(g.geometry().window_origin() == zg.window_origin());
-    return g;
-  };
+  before.Recenter(zg.CellCenterM(centre));
+  assert(before.geometry().window_origin() == zg.window_origin());
+  return GridCycleInput{std::move(before), z,
+                        ToSeconds(log.lidar[k].stamp - log.lidar[k - 1].stamp)};
+}
+
+GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, int repetitions,
+                                  int reference_repetitions) {
+  const GridCycleInput input = PrepareGridCycle(scenario, at_s);
+  const grid::MeasurementGrid& z = input.z;
+  const double dt_s = input.dt_s;
+  auto fresh_copy = [&] { return input.before; };
 
   GridCycleFigures out;
   std::vector<double> fast_ms, reference_ms;

@@ -6,6 +6,8 @@
 
 #include <cstddef>
 
+#include "lookout/grid/extended_grid.h"
+#include "lookout/grid/inverse_sensor_model.h"
 #include "lookout/sim/scenario.h"
 
 namespace lookout::app {
@@ -16,6 +18,18 @@ struct GridCycleFigures {
   double reference_speedup = 0.0;    // reference over fast path
   std::size_t sources = 0;           // active cells moved in the timed update
 };
+
+// The input of one timed grid update: the grid's state before the scan at the first lidar frame
+// at or after `at_s` of `scenario` (the grid having run every earlier scan: a steady state of
+// tracked structure, movers and newly revealed occupancy), already scrolled to that scan's
+// window, the scan's measurement and its time step. The 400 x 400 grid of 0.15 m cells of
+// GridOptions. Throws std::invalid_argument when no lidar frame follows at_s.
+struct GridCycleInput {
+  grid::ExtendedGrid before;
+  grid::MeasurementGrid z;
+  double dt_s = 0.0;
+};
+GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s);
 
 // One grid update on `scenario`'s scan at the first lidar frame at or after `at_s`, the grid
 // having run every earlier scan (a steady state: tracked structure, movers, newly revealed
