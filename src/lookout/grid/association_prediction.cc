@@ -68,10 +68,18 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   // Sources in storage order (a fixed order for a given window: every later sum follows it).
   // One pass over two contiguous layers; the local cell is computed only for the sources.
   const ScrollingGridGeometry& geometry = layers.geometry();
+  // IsSource in float, so that the scan of the whole window compares floats: for a float x,
+  // x >= t exactly when x >= the smallest float not below t (the same decisions as IsSource).
+  const auto at_least = [](double t) {
+    const auto f = static_cast<float>(t);
+    return static_cast<double>(f) < t ? std::nextafter(f, 2.0f) : f;
+  };
+  const float active = at_least(options.active_occupancy);
+  const float tracked = at_least(options.tracked_min_occupancy);
+  const float seen_threshold = at_least(options.seen_threshold);
   for (std::size_t cell = 0; cell < occupancy.size(); ++cell) {
-    if (!IsSource(static_cast<double>(occupancy[cell]), static_cast<double>(seen[cell]), options)) {
-      continue;
-    }
+    const float o = occupancy[cell];
+    if (!(o >= active || (o >= tracked && seen[cell] >= seen_threshold))) continue;
     a.source.push_back(cell);
     a.source_local.push_back(geometry.LocalFromGlobal(geometry.GlobalFromStorage(cell)));
   }
@@ -118,15 +126,14 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
       const SearchWindow& w = a.window[s];
       const CellIndex from = a.source_local[s];
       const std::size_t first = a.first_entry[s];
-      for (std::size_t k = 0; k < w.EntryCount(); ++k) {
-        const CellIndex d = w.Displacement(k);
+      w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
         const int tx = from.ix + d.ix;
         const int ty = from.iy + d.iy;
         a.target[first + k] = indexer.Inside(tx, ty)
                                   ? static_cast<std::int64_t>(indexer.Storage(tx, ty))
                                   : kOutsideWindow;
         a.entry_source[first + k] = static_cast<std::uint32_t>(s);
-      }
+      });
       ComputePsi(w, &a.weight[first]);
     }
   });

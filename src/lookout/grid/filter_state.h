@@ -96,6 +96,17 @@ struct SearchWindow {
     const int v = static_cast<int>(k / static_cast<std::size_t>(n));
     return {center.ix + stride * (u - half), center.iy + stride * (v - half)};
   }
+  // f(k, Displacement(k)) for k = 0, 1, ... in order, without Displacement's division per entry
+  // (the hot loops over a window's entries).
+  template <typename F>
+  void ForEachDisplacement(const F& f) const {
+    const int n = size();
+    std::size_t k = 0;
+    for (int v = 0; v < n; ++v) {
+      const int dy = center.iy + stride * (v - half);
+      for (int u = 0; u < n; ++u, ++k) f(k, CellIndex{center.ix + stride * (u - half), dy});
+    }
+  }
   // The entry of displacement d, or -1 when d is not one of the window's samples.
   std::int64_t EntryOf(const CellIndex& d) const;
 };

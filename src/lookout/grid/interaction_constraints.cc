@@ -17,14 +17,13 @@ DisplacementMoments MomentsOf(const Associations& a, std::size_t s) {
   const SearchWindow& w = a.window[s];
   const std::size_t first = a.first_entry[s];
   double sum = 0.0, mx = 0.0, my = 0.0, mxx = 0.0;
-  for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+  w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
     const double p = static_cast<double>(a.weight[first + k]);
-    const CellIndex d = w.Displacement(k);
     sum += p;
     mx += p * d.ix;
     my += p * d.iy;
     mxx += p * (d.ix * d.ix + d.iy * d.iy);
-  }
+  });
   DisplacementMoments m;
   if (sum <= 0.0) return m;
   m.mean_x_cells = mx / sum;
@@ -67,33 +66,49 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
   const double r2 = options.rigidity_sigma_cells * options.rigidity_sigma_cells;
   if (options.enable_rigidity_constraint) {
     ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
-      std::vector<double> kernel, rows;
+      std::vector<double> kernel, rows, column;
+      std::size_t kernel_n = 0;
+      int kernel_stride = 0;
       for (std::size_t s = begin; s < end; ++s) {
         moments[s] = MomentsOf(a, s);
         const SearchWindow& w = a.window[s];
         const auto n = static_cast<std::size_t>(w.size());
-        kernel.assign(n, 0.0);
-        for (std::size_t d = 0; d < n; ++d) {
-          const double dist = static_cast<double>(w.stride) * static_cast<double>(d);
-          kernel[d] = std::exp(-dist * dist / (2.0 * r2));
+        // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table, rebuilt only when
+        // the window's shape changes (sources come in runs of one shape: fine or coarse), so
+        // both passes are plain dot products.
+        if (n != kernel_n || w.stride != kernel_stride) {
+          kernel.assign(n * n, 0.0);
+          for (std::size_t u = 0; u < n; ++u) {
+            for (std::size_t u2 = 0; u2 < n; ++u2) {
+              const double dist = static_cast<double>(w.stride) *
+                                  (static_cast<double>(u) - static_cast<double>(u2));
+              kernel[u * n + u2] = std::exp(-dist * dist / (2.0 * r2));
+            }
+          }
+          kernel_n = n;
+          kernel_stride = w.stride;
         }
-        const auto k1 = [&](std::size_t i, std::size_t j) { return kernel[i > j ? i - j : j - i]; };
         const float* p = &a.weight[a.first_entry[s]];
         rows.assign(n * n, 0.0);
-        for (std::size_t v = 0; v < n; ++v) {
-          for (std::size_t u = 0; u < n; ++u) {
-            double sum = 0.0;
-            for (std::size_t u2 = 0; u2 < n; ++u2) sum += static_cast<double>(p[v * n + u2]) * k1(u, u2);
-            rows[v * n + u] = sum;
+        // Both passes accumulate whole rows (the inner loops have no reduction and vectorise);
+        // K is symmetric.
+        for (std::size_t v = 0; v < n; ++v) {  // along u: rows(v, u) = sum_u2 P(v, u2) K(u2, u)
+          double* row = &rows[v * n];
+          for (std::size_t u2 = 0; u2 < n; ++u2) {
+            const double pv = static_cast<double>(p[v * n + u2]);
+            const double* k = &kernel[u2 * n];
+            for (std::size_t u = 0; u < n; ++u) row[u] += pv * k[u];
           }
         }
+        column.assign(n, 0.0);
         float* out = &blurred[a.first_entry[s]];
-        for (std::size_t v = 0; v < n; ++v) {
-          for (std::size_t u = 0; u < n; ++u) {
-            double sum = 0.0;
-            for (std::size_t v2 = 0; v2 < n; ++v2) sum += rows[v2 * n + u] * k1(v, v2);
-            out[v * n + u] = static_cast<float>(sum);
+        for (std::size_t v = 0; v < n; ++v) {  // along v: B(v, u) = sum_v2 K(v, v2) rows(v2, u)
+          std::fill(column.begin(), column.end(), 0.0);
+          for (std::size_t v2 = 0; v2 < n; ++v2) {
+            const double k = kernel[v * n + v2];
+            for (std::size_t u = 0; u < n; ++u) column[u] += k * rows[v2 * n + u];
           }
+          for (std::size_t u = 0; u < n; ++u) out[v * n + u] = static_cast<float>(column[u]);
         }
       }
     });
@@ -133,16 +148,15 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
         }
       }
       double sum = 0.0;
-      for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+      w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
         const std::size_t e = first + k;
         double p = static_cast<double>(a.weight[e]);
         if (options.enable_no_convergence_constraint && a.target[e] != kOutsideWindow) {
           const double others = static_cast<double>(inflow_at_entry[e]) - p * o_j;
-          const double excess = std::max(0.0, others + o_j - 1.0);
-          p *= std::exp(-excess * excess * inv_two_nc_var);
+          const double excess = others + o_j - 1.0;
+          if (excess > 0.0) p *= std::exp(-excess * excess * inv_two_nc_var);
         }
         if (link_count > 0) {
-          const CellIndex d = w.Displacement(k);
           for (std::size_t l = 0; l < link_count; ++l) {
             const Link& link = links[l];
             double agree = 0.0;
@@ -159,7 +173,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
         }
         constrained[e] = static_cast<float>(p);
         sum += p;
-      }
+      });
       if (sum <= 0.0) {  // every move forbidden (underflow): keep Pw
         for (std::size_t k = 0; k < w.EntryCount(); ++k) constrained[first + k] = a.weight[first + k];
         continue;

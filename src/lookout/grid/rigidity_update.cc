@@ -16,6 +16,16 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
         if (y == FilterWorkspace::kNone) continue;
         const SearchWindow& wy = a.window[y];
         double overlap = 0.0;
+        const float* px = &a.weight[a.first_entry[x]];
+        const float* py = &a.weight[a.first_entry[y]];
+        if (wy.center == wx.center && wy.stride == wx.stride && wy.half == wx.half) {
+          // One lattice (most neighbours of one body): entry k is the same displacement in both.
+          for (std::size_t k = 0; k < wx.EntryCount(); ++k) {
+            overlap += static_cast<double>(px[k]) * static_cast<double>(py[k]);
+          }
+          links[x * kNeighbourCount + d] = static_cast<float>(overlap);
+          continue;
+        }
         for (std::size_t k = 0; k < wx.EntryCount(); ++k) {
           const std::int64_t ky = wy.EntryOf(wx.Displacement(k));
           if (ky < 0) continue;

@@ -19,18 +19,19 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
   ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       double w_sum = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
-      for (std::size_t e = a.first_entry[s]; e < a.first_entry[s + 1]; ++e) {
+      const std::size_t first = a.first_entry[s];
+      a.window[s].ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
+        const std::size_t e = first + k;
         // Where the mass survived: a move into a cell now believed free destroyed it.
         const double w = a.target[e] == kOutsideWindow
                              ? 0.0
                              : static_cast<double>(a.weight[e]) *
                                    static_cast<double>(occupancy[static_cast<std::size_t>(a.target[e])]);
-        const CellIndex d = a.window[s].Displacement(e - a.first_entry[s]);
         w_sum += w;
         sx += w * d.ix;
         sy += w * d.iy;
         s2 += w * (d.ix * d.ix + d.iy * d.iy);
-      }
+      });
       if (w_sum <= 0.0) continue;
       source_mean_x[s] = sx / w_sum;
       source_mean_y[s] = sy / w_sum;
