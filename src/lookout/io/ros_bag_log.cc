@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -14,13 +15,14 @@
 namespace lookout::io {
 namespace {
 
-enum class Kind { kNone, kScan, kOdometry, kTransforms, kTruth };
+enum class Kind { kNone, kScan, kOdometry, kTransforms, kTruth, kMarker };
 
 Kind KindOfType(std::string_view type) {
   if (type == "sensor_msgs/LaserScan") return Kind::kScan;
   if (type == "nav_msgs/Odometry") return Kind::kOdometry;
   if (type == "tf2_msgs/TFMessage" || type == "tf/tfMessage") return Kind::kTransforms;
   if (type == "leg_tracker/Person") return Kind::kTruth;
+  if (type == "visualization_msgs/Marker") return Kind::kMarker;
   return Kind::kNone;
 }
 
@@ -71,6 +73,7 @@ void SortAndShift(std::vector<T>& items, TimeNs origin) {
   for (T& item : items) {
     if constexpr (std::is_same_v<T, RosLaserScan>) {
       item.scan.stamp -= origin;
+      item.record_stamp -= origin;
     } else {
       item.stamp -= origin;
     }
@@ -111,6 +114,7 @@ RosBagLog ReadRosBagLog(RosBag& bag, const RosBagLogOptions& options) {
   log.source = bag.source();
   std::map<std::string, TopicData> topics;
   std::map<std::uint32_t, std::shared_ptr<const RosMessageDefinition>> definitions;
+  std::set<std::uint32_t> unreadable_markers;
   std::optional<TimeNs> first;
   TimeNs last = 0;
   std::uint64_t warnings_dropped = 0;
@@ -133,21 +137,30 @@ RosBagLog ReadRosBagLog(RosBag& bag, const RosBagLogOptions& options) {
     if (topic.count == 0) topic.type = connection.type;
     ++topic.count;
     const Kind kind = KindOfType(connection.type);
-    const bool wanted = kind == Kind::kTransforms || read(options.scan_topic, Kind::kScan, connection) ||
+    // Markers only until one has given the annotations' frame.
+    const bool wanted = kind == Kind::kTransforms ||
+                        (kind == Kind::kMarker && log.people_frame_id.empty()) ||
+                        read(options.scan_topic, Kind::kScan, connection) ||
                         read(options.odom_topic, Kind::kOdometry, connection) ||
                         read(options.truth_topic, Kind::kTruth, connection);
     if (!wanted) return;
 
+    if (unreadable_markers.contains(connection.id)) return;
     auto& definition = definitions[connection.id];
     if (!definition) {
       try {
         definition = std::make_shared<const RosMessageDefinition>(
             ParseRosMessageDefinition(connection.type, connection.message_definition));
       } catch (const RosMessageError& e) {
-        throw InputError(bag.source(), 0,
-                         fmt::format("connection {} ({}).message_definition", connection.id,
-                                     connection.topic),
-                         e.what());
+        const std::string field = fmt::format("connection {} ({}).message_definition",
+                                              connection.id, connection.topic);
+        // Markers are read only for the annotations' frame: without them the log still reads.
+        if (kind == Kind::kMarker) {
+          unreadable_markers.insert(connection.id);
+          warn(fmt::format("{}: {} (markers not read)", field, e.what()));
+          return;
+        }
+        throw InputError(bag.source(), 0, field, e.what());
       }
     }
     try {
@@ -156,6 +169,7 @@ RosBagLog ReadRosBagLog(RosBag& bag, const RosBagLogOptions& options) {
         case Kind::kScan: {
           RosLaserScan scan = ToLaserScan(value);
           if (scan.scan.stamp == 0) scan.scan.stamp = time;
+          scan.record_stamp = time;
           topic.scans.push_back(std::move(scan));
           break;
         }
@@ -173,6 +187,11 @@ RosBagLog ReadRosBagLog(RosBag& bag, const RosBagLogOptions& options) {
           break;
         case Kind::kTruth:
           topic.people.push_back(ToPersonTruth(value, time));
+          break;
+        case Kind::kMarker:
+          if (value["ns"].AsString() == kPeopleMarkerNamespace) {
+            log.people_frame_id = value["header"]["frame_id"].AsString();
+          }
           break;
         case Kind::kNone:
           break;

@@ -8,6 +8,7 @@
 //   odometry  nav_msgs/Odometry               one topic, or `odom_topic`
 //   truth     leg_tracker/Person              one topic, or `truth_topic`
 //   tf        tf2_msgs/TFMessage, tf/tfMessage  every such topic (/tf and /tf_static)
+//   markers   visualization_msgs/Marker       every such topic, for the annotations' frame only
 // Several topics of one kind and no option to choose: an InputError that lists them. Messages
 // are decoded by the definitions the bag carries (ros_message.h).
 //
@@ -47,6 +48,9 @@ struct RosTopicSummary {
 
 inline constexpr std::size_t kMaxRosLogWarnings = 100;
 
+// The marker namespace of leg_tracker_benchmarks' annotation tool (annotate_rosbags.py).
+inline constexpr const char* kPeopleMarkerNamespace = "ground_truth_people_tracks_markers";
+
 struct RosBagLog {
   std::string source;
   TimeNs start_unix_ns = 0;  // the earliest message record time: 0 of the log's time base
@@ -59,6 +63,10 @@ struct RosBagLog {
   std::vector<RosOdometry> odometry;
   std::vector<RosTransform> transforms;
   std::vector<PersonTruth> people;
+  // The frame the people were annotated in: leg_tracker/Person has no header, but the
+  // benchmark's annotation tool draws each annotated person as a visualization_msgs/Marker in
+  // that frame (namespace kPeopleMarkerNamespace). Empty when no such marker is in the bag.
+  std::string people_frame_id;
   std::uint64_t messages_skipped = 0;
   std::vector<std::string> warnings;  // at most kMaxRosLogWarnings lines, then a count
   RosBagStats bag;

@@ -224,6 +224,30 @@ TEST_F(LegTrackerBag, TwelvePeopleOverThirtySixSeconds) {
   EXPECT_NEAR(log.people.front().y_m, -2.8100929260253906, 1e-12);
 }
 
+// The annotations carry no frame; their markers do (the annotation tool's fixed frame, the
+// scan's). Each annotation is stamped halfway between two scan records: between the record
+// times, not the header stamps, which lead them by about 64 ms.
+TEST_F(LegTrackerBag, AnnotationsAreInTheLaserFrameBetweenScanRecords) {
+  const RosBagLog& log = *log_;
+  EXPECT_EQ(log.people_frame_id, "left_laser");
+  const RosLaserScan& first = log.scans.front();
+  EXPECT_EQ(first.record_stamp, 1403024474695328780 - log.start_unix_ns);
+  EXPECT_NEAR(ToSeconds(first.record_stamp - first.scan.stamp), 0.0636, 0.001);
+  std::size_t between = 0;
+  for (const PersonTruth& p : log.people) {
+    const auto after = std::upper_bound(
+        log.scans.begin(), log.scans.end(), p.stamp,
+        [](TimeNs t, const RosLaserScan& s) { return t < s.record_stamp; });
+    ASSERT_NE(after, log.scans.begin());
+    ASSERT_NE(after, log.scans.end());
+    const TimeNs before = std::prev(after)->record_stamp;
+    const TimeNs mid = before + (after->record_stamp - before) / 2;
+    // rospy's float arithmetic: within a millisecond (one is 0.23 ms off, the others 1 ns).
+    if (std::abs(p.stamp - mid) <= 1'000'000) ++between;
+  }
+  EXPECT_EQ(between, log.people.size());
+}
+
 TEST_F(LegTrackerBag, OdometryAndTransformFrames) {
   const RosBagLog& log = *log_;
   EXPECT_EQ(log.odometry.front().frame_id, "/odom");  // ROS1's old global frame names

@@ -26,6 +26,10 @@ TimeNs ToTimeNs(RosTime t);
 // mount is left at identity (the laser's pose on the robot is a transform in /tf, by frame_id).
 struct RosLaserScan {
   LidarScan scan;
+  // When the bag recorded it (the record's time, not the header's): what orders the scans
+  // against messages stamped by the recorder, such as leg_tracker's annotations. 0 until the
+  // bag log sets it.
+  TimeNs record_stamp = 0;
   std::string frame_id;
   double range_min_m = 0.0;
   double scan_time_s = 0.0;
