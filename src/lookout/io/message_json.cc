@@ -6,6 +6,7 @@
 
 #include "lookout/core/input_error.h"
 #include "lookout/io/base64.h"
+#include "lookout/io/replay_log.h"
 
 namespace lookout::io {
 namespace {
@@ -327,6 +328,25 @@ json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes) {
     } else {
       e["lines"].push_back(Outline(s.vertices, wall, 0.0));
     }
+    entities.push_back(std::move(e));
+  }
+  return {{"deletions", json::array()}, {"entities", std::move(entities)}};
+}
+
+json PeopleSceneToJson(TimeNs t, const std::string& frame_id,
+                       std::span<const AnnotatedPerson> people) {
+  json entities = json::array();
+  const json color = Color(0.3, 1.0, 0.3, 0.8);
+  for (const AnnotatedPerson& p : people) {
+    json e = Entity(t, "person-" + std::to_string(p.id), frame_id);
+    e["cylinders"].push_back(Cylinder(p.position_m, 0.25, 1.7, color));
+    e["texts"].push_back({{"pose", Pose3FromPose2(Pose2(p.position_m, 0.0))},
+                          {"billboard", true},
+                          {"font_size", 14.0},
+                          {"scale_invariant", true},
+                          {"color", Color(1, 1, 1, 1)},
+                          {"text", std::to_string(p.id)}});
+    e["lifetime"] = {{"sec", 0}, {"nsec", 200'000'000}};
     entities.push_back(std::move(e));
   }
   return {{"deletions", json::array()}, {"entities", std::move(entities)}};

@@ -5,6 +5,7 @@
 // in their shortest round-trip form and objects with sorted keys).
 
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,13 @@ nlohmann::json TruthSceneToJson(const sim::TruthFrame& frame);
 // foxglove.SceneUpdate drawing the static world: polygons as extruded outlines, circles as
 // cylinders. Sent once; the entities have no lifetime.
 nlohmann::json StaticWorldToJson(TimeNs t, const std::vector<sim::Shape>& shapes);
+
+struct AnnotatedPerson;  // replay_log.h
+// foxglove.SceneUpdate drawing people annotated on a real log in `frame_id`: a cylinder of a
+// person's size at each, labelled with the annotation's id. Short-lived: an annotation holds for
+// its scan only.
+nlohmann::json PeopleSceneToJson(TimeNs t, const std::string& frame_id,
+                                 std::span<const AnnotatedPerson> people);
 
 // foxglove.SceneUpdate drawing lidar objects in `frame_id` (the vehicle frame): the extent as
 // an outline coloured by the most likely class (faint when not dynamic), the front segment in

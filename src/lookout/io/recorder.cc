@@ -35,6 +35,7 @@ Recorder::Recorder(const std::string& path, McapWriterOptions options)
   tracks_ = writer_.AddChannel(scene_id, topics::kTracks, "json");
   risk_ = AddJsonChannel(writer_, topics::kRiskAssessment, LookoutRiskAssessmentSchema());
   warnings_ = AddJsonChannel(writer_, topics::kRiskWarnings, LookoutWarningEventSchema());
+  truth_people_ = writer_.AddChannel(scene_id, topics::kTruthPeople, "json");
 }
 
 void Recorder::Emit(std::uint16_t channel, const char* topic, TimeNs t,
@@ -92,6 +93,11 @@ void Recorder::Write(TimeNs t, const risk::EgoInput& ego, const risk::RiskAssess
 
 void Recorder::Write(const risk::WarningEvent& event) {
   Emit(warnings_, topics::kRiskWarnings, event.stamp, WarningEventToJson(event));
+}
+
+void Recorder::Write(const PeopleFrame& people) {
+  Emit(truth_people_, topics::kTruthPeople, people.stamp,
+       PeopleSceneToJson(people.stamp, frames::kVehicle, people.people));
 }
 
 void Recorder::WriteTransform(TimeNs t, const char* parent, const char* child, const Pose2& pose) {

@@ -13,6 +13,7 @@
 #include "lookout/core/messages.h"
 #include "lookout/io/mcap_writer.h"
 #include "lookout/io/message_json.h"
+#include "lookout/io/replay_log.h"
 #include "lookout/sim/shapes.h"
 #include "lookout/sim/truth.h"
 
@@ -33,6 +34,7 @@ inline constexpr const char* kLidarObjects = "/lidar/objects";
 inline constexpr const char* kTracks = "/tracks";
 inline constexpr const char* kRiskAssessment = "/risk/assessment";
 inline constexpr const char* kRiskWarnings = "/risk/warnings";
+inline constexpr const char* kTruthPeople = "/truth/people";
 }  // namespace topics
 
 // Frame names (docs/conventions.md).
@@ -65,6 +67,8 @@ class Recorder {
 
   // The lidar objects of one cycle as a foxglove.SceneUpdate in the vehicle frame.
   void Write(const LidarObjectFrame& objects);
+  // People annotated on a real log's scan, as a foxglove.SceneUpdate in the vehicle frame.
+  void Write(const PeopleFrame& people);
 
   // The confirmed tracks of one cycle as a foxglove.SceneUpdate in the odometry frame.
   void Write(TimeNs t, const std::vector<tracking::Track>& tracks);
@@ -85,7 +89,7 @@ class Recorder {
   std::map<std::string, std::uint64_t> counts_;
   std::uint16_t lidar_ = 0, stereo_ = 0, odometry_ = 0, tf_ = 0, truth_ego_ = 0,
                 truth_actors_ = 0, truth_scene_ = 0, world_ = 0, grid_ = 0, lidar_objects_ = 0,
-                tracks_ = 0, risk_ = 0, warnings_ = 0;
+                tracks_ = 0, risk_ = 0, warnings_ = 0, truth_people_ = 0;
 };
 
 }  // namespace lookout::io
