@@ -13,11 +13,13 @@
 #include <thread>
 
 #include "lookout/app/output_files.h"
+#include "lookout/app/replay.h"
 #include "lookout/app/runner.h"
 #include "lookout/app/slam_command.h"
 #include "lookout/app/stage_benchmarks.h"
 #include "lookout/core/input_error.h"
 #include "lookout/eval/statistics.h"
+#include "lookout/io/replay_log.h"
 #include "lookout/io/scenario_loader.h"
 #include "lookout/sim/simulator.h"
 
@@ -169,6 +171,100 @@ int Eval(const std::vector<std::string>& paths, const std::string& json_path, in
   return 0;
 }
 
+struct ReplayCommandOptions {
+  std::string log_path;
+  std::string out_dir;
+  std::string json_path;
+  io::ReplayLogOptions topics;
+  int threads = DefaultThreads();
+};
+
+json ReplayJson(const io::ReplayLog& log, const eval::ScenarioMetrics& metrics) {
+  json document = MetricsJson(metrics);
+  document["source"] = log.source;
+  document["format"] = io::LogFormatName(log.format);
+  json counts = json::object();
+  for (const auto& [name, n] : log.counts) counts[name] = n;
+  document["degradations"] = std::move(counts);
+  return document;
+}
+
+void PrintReplaySummary(const io::ReplayLog& log, const ReplayResult& r,
+                        const std::string& recording, const std::string& metrics_path) {
+  std::cout << fmt::format("log         {} ({}, {:.2f} s)\n", log.source,
+                           io::LogFormatName(log.format), log.duration_s);
+  for (const std::string& input : log.inputs) std::cout << fmt::format("read        {}\n", input);
+  std::cout << fmt::format("frames      {} lidar, {} stereo, {} odometry\n", r.lidar_frames,
+                           r.stereo_frames, r.odometry_frames);
+  std::cout << "degraded   ";
+  if (log.counts.empty()) std::cout << " nothing";
+  for (const auto& [name, n] : log.counts) std::cout << fmt::format(" {} {}", name, n);
+  const auto value = [&](const std::string& key) -> std::optional<double> {
+    const auto it = r.metrics.values.find(key);
+    if (it == r.metrics.values.end()) return std::nullopt;
+    return it->second;
+  };
+  if (const auto skipped = value("replay.scans_without_pose"); skipped && *skipped > 0) {
+    std::cout << fmt::format(" scans_without_pose {}", *skipped);
+  }
+  std::cout << "\n";
+  std::cout << "messages   ";
+  for (const auto& [topic, count] : r.messages_per_topic) {
+    std::cout << fmt::format(" {} {}", topic, count);
+  }
+  std::cout << "\n";
+  if (const auto n = value("people.grid.positions")) {
+    std::cout << fmt::format(
+        "people      {} annotated positions ({}): {:.1f} % with a dynamic grid object within "
+        "0.5 m, {:.1f} % with any\n",
+        *n, log.people_frame, 100.0 * value("people.grid.dynamic_share").value_or(0.0),
+        100.0 * value("people.grid.any_share").value_or(0.0));
+  }
+  if (const auto ate = value("localisation.ate_rmse_m")) {
+    std::cout << fmt::format(
+        "ate         {:.3f} m RMSE, heading {:.2f} deg RMSE: the pipeline's ego pose against the "
+        "log's reference poses (rigid alignment)\n",
+        *ate, value("localisation.heading_rmse_deg").value_or(0.0));
+  }
+  std::cout << fmt::format("wall time   {:.3f} s\n", r.wall_s);
+  if (r.duration_s > 0.0) {
+    std::cout << fmt::format("real time   {:.1f}x faster than real time\n",
+                             r.duration_s / r.wall_s);
+  }
+  std::cout << fmt::format("recording   {}\n", recording);
+  if (!metrics_path.empty()) std::cout << fmt::format("metrics     {}\n", metrics_path);
+}
+
+int Replay(const ReplayCommandOptions& o) {
+  ValidateThreads(o.threads);
+  CheckOutputFilePath(o.json_path, "--json");
+  // The whole log is read and checked before anything is written.
+  const io::ReplayLog log = io::ReadReplayLog(o.log_path, o.topics);
+  const std::string out_dir =
+      o.out_dir.empty() ? (std::filesystem::path("lookout-out") / log.name).string() : o.out_dir;
+  EnsureOutputDirectory(out_dir, "--out");
+  for (const std::string& w : log.warnings) std::cerr << "lookout: warning: " << w << "\n";
+  const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
+
+  Pipeline pipeline(PipelineOptions{});
+  ReplayOptions options;
+  options.threads = o.threads;
+  options.recording_path = recording;
+  options.progress = ProgressLine(log.name);
+  const ReplayResult result = RunReplay(log, pipeline, options);
+  if (options.progress) std::cerr << "\n";
+
+  const std::string document = ReplayJson(log, result.metrics).dump(2) + "\n";
+  std::string metrics_path;
+  if (!log.people.empty() || !log.reference.empty()) {
+    metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
+    WriteFileAtomically(metrics_path, document);
+  }
+  if (!o.json_path.empty()) WriteFileAtomically(o.json_path, document);
+  PrintReplaySummary(log, result, recording, metrics_path);
+  return 0;
+}
+
 // sim.realtime_factor: the default scenario's sensors, one thread, median of five runs.
 double SimRealtimeFactor() {
   const sim::Simulator simulator(io::LoadDefaultScenario());
@@ -250,6 +346,22 @@ int RunCli(int argc, char** argv) {
   CLI::App* bench = cli.add_subcommand("bench", "Headline performance figures (JSON)");
   bench->add_option("--json", bench_json, "Write the JSON here instead of stdout");
 
+  ReplayCommandOptions replay_options;
+  CLI::App* replay = cli.add_subcommand(
+      "replay", "Run the pipeline on a recorded log: CARMEN, ROS1 bag (or its .zip), MCAP");
+  replay->add_option("log", replay_options.log_path, "The log (.log, .clf, .gz, .bag, .zip, .mcap)")
+      ->required();
+  replay->add_option("--out", replay_options.out_dir, "Output directory (default lookout-out/NAME)");
+  replay->add_option("--json", replay_options.json_path, "Also write the metrics JSON here");
+  replay->add_option("--scan-topic", replay_options.topics.scan_topic,
+                     "The laser scan topic, when the log has several");
+  replay->add_option("--odom-topic", replay_options.topics.odom_topic,
+                     "The odometry topic, when the log has several");
+  replay->add_option("--truth-topic", replay_options.topics.truth_topic,
+                     "The ground-truth topic (leg_tracker/Person), when the log has several");
+  replay->add_option("--threads", replay_options.threads,
+                     "Worker threads (the output does not depend on it)");
+
   SlamCommandOptions slam_options;
   CLI::App* slam = cli.add_subcommand(
       "slam", "Lidar localisation and local mapping of a CARMEN log (raw odometry and scans)");
@@ -260,6 +372,8 @@ int RunCli(int argc, char** argv) {
   slam->add_option("--map", slam_options.map_path, "Write the map here as a PNG");
   slam->add_flag("--odometry-only", slam_options.odometry_only,
                  "Dead reckoning alone: the baseline that shows what the scans add");
+  slam->add_option("--seed", slam_options.seed,
+                   "Seed of the particle filter's random draws (the same seed, the same bytes)");
 
   try {
     cli.parse(argc, argv);
@@ -274,6 +388,7 @@ int RunCli(int argc, char** argv) {
     if (eval_cmd->parsed()) return Eval(eval_scenarios, eval_json, threads);
     if (bench->parsed()) return Bench(bench_json);
     if (slam->parsed()) return RunSlamCommand(slam_options);
+    if (replay->parsed()) return Replay(replay_options);
   } catch (const InputError& e) {
     std::cerr << "lookout: " << e.what() << "\n";
     return 2;

@@ -1,22 +1,12 @@
 #include "lookout/app/message_loop.h"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 #include <utility>
 
 #include "lookout/app/grid_recording.h"
 
 namespace lookout::app {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipeline,
                                  const MessageLoopOptions& options) {
@@ -50,7 +40,7 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
     } else {
       const std::size_t k = next_lidar++;
       const LidarScan& scan = streams.lidar[k];
-      const Clock::time_point step_start = Clock::now();
+      const WallClock::time_point step_start = WallClock::now();
       pipeline.OnLidar(scan);
       result.step_ms.push_back(1e3 * SecondsSince(step_start));
       // This scan's objects; none when the grid had to skip it (no ego pose).
@@ -77,7 +67,7 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
         }
       }
       if (options.after_cycle) {
-        const Clock::time_point callback_start = Clock::now();
+        const WallClock::time_point callback_start = WallClock::now();
         options.after_cycle(LidarCycle{k, &scan, objects});
         result.after_cycle_s += SecondsSince(callback_start);
       }

@@ -16,6 +16,7 @@
 // cycle, this scan's lidar objects, the tracks and the risk step when they ran, a warning event
 // when the level changed, and the grid's belief at every kRecordGridEvery-th scan.
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <span>
@@ -26,6 +27,12 @@
 #include "lookout/io/recorder.h"
 
 namespace lookout::app {
+
+// Wall time of the runs and their parts.
+using WallClock = std::chrono::steady_clock;
+inline double SecondsSince(WallClock::time_point start) {
+  return std::chrono::duration<double>(WallClock::now() - start).count();
+}
 
 // The order in which messages with equal timestamps reach the pipeline.
 enum class SensorOrder { kOdometry = 0, kStereo = 1, kLidar = 2 };

@@ -24,6 +24,17 @@ void WriteFileAtomically(const std::string& path, std::string_view contents) {
   }
 }
 
+void CheckOutputFilePath(const std::string& path, const std::string& flag) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw InputError(path, 0, flag, "its directory does not exist");
+  }
+  if (std::filesystem::is_directory(p, ec)) throw InputError(path, 0, flag, "is a directory");
+}
+
 void EnsureOutputDirectory(const std::string& dir, const std::string& flag) {
   std::error_code ec;
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {

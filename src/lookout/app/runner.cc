@@ -23,12 +23,6 @@
 namespace lookout::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // The grid at one instant as PNG images: occupancy, the speed map of the paper's Fig. 6
 // (hue = direction, brightness = speed), and the most likely class of each occupied cell.
 std::vector<std::string> WriteSnapshot(const grid::ExtendedGrid& grid, const RunOptions& options,
@@ -50,7 +44,7 @@ std::vector<std::string> WriteSnapshot(const grid::ExtendedGrid& grid, const Run
 }
 
 RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options) {
-  const Clock::time_point run_start = Clock::now();
+  const WallClock::time_point run_start = WallClock::now();
   RunResult result;
   result.scenario = scenario.name;
   result.simulated_s = scenario.duration_s;
@@ -61,7 +55,7 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
       result.contacts.emplace_back(scenario.actors[i].id, *t);
     }
   }
-  const Clock::time_point sim_start = Clock::now();
+  const WallClock::time_point sim_start = WallClock::now();
   const sim::SensorLog log = simulator.Run(options.threads);
   result.simulation_wall_s = SecondsSince(sim_start);
   result.lidar_frames = static_cast<std::int64_t>(log.lidar.size());

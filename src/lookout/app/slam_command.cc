@@ -8,33 +8,42 @@
 #include <fmt/format.h>
 #include <iostream>
 
+#include "lookout/app/output_files.h"
 #include "lookout/core/input_error.h"
 #include "lookout/eval/trajectory_error.h"
 #include "lookout/eval/trajectory_io.h"
 
 namespace lookout::app {
-namespace {
-
-// An output file's directory must exist: checked before the run so that a typo costs nothing
-// and leaves nothing behind.
-void CheckOutputPath(const std::string& path, const std::string& flag) {
-  if (path.empty()) return;
-  const std::filesystem::path p(path);
-  const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    throw InputError(path, 0, flag, "its directory does not exist");
-  }
-  if (std::filesystem::is_directory(p, ec)) throw InputError(path, 0, flag, "is a directory");
-}
-
-}  // namespace
 
 std::vector<lidar::SlamRecord> SlamRecordsOf(const io::CarmenLog& log) {
   std::vector<lidar::SlamRecord> records;
   records.reserve(log.records.size());
   for (const io::CarmenRecord& r : log.records) records.push_back({r.t_s, r.odometry, r.scan});
   return records;
+}
+
+lidar::SlamOptions CarmenSlamOptions() {
+  lidar::SlamOptions options;
+  options.motion.kind = lidar::MotionModelKind::kDifferentialDrive;
+  return options;
+}
+
+eval::AbsoluteTrajectoryError ReferenceError(const io::CarmenLog& log,
+                                             const lidar::SlamResult& result) {
+  std::vector<Pose2> estimate;
+  std::vector<Pose2> reference;
+  std::size_t scan = 0;
+  for (const io::CarmenRecord& r : log.records) {
+    if (!r.scan) continue;
+    if (scan < result.scan_states.size() && r.reference_pose &&
+        result.scan_states[scan].stamp == FromSeconds(r.t_s)) {
+      estimate.push_back(result.scan_states[scan].pose);
+      reference.push_back(*r.reference_pose);
+    }
+    ++scan;
+  }
+  if (estimate.size() < 2) return {};
+  return eval::AbsoluteErrorOfPairs(estimate, reference);
 }
 
 io::Image8 MapImage(const lidar::MapRaster& map) {
@@ -55,8 +64,8 @@ io::Image8 MapImage(const lidar::MapRaster& map) {
 }
 
 int RunSlamCommand(const SlamCommandOptions& options) {
-  CheckOutputPath(options.trajectory_path, "--trajectory");
-  CheckOutputPath(options.map_path, "--map");
+  CheckOutputFilePath(options.trajectory_path, "--trajectory");
+  CheckOutputFilePath(options.map_path, "--map");
   if (!options.map_path.empty() && std::filesystem::path(options.map_path).extension() != ".png") {
     throw InputError(options.map_path, 0, "--map", "must name a .png file");
   }
@@ -66,9 +75,8 @@ int RunSlamCommand(const SlamCommandOptions& options) {
   }
   const std::vector<lidar::SlamRecord> records = SlamRecordsOf(log);
 
-  // CARMEN logs are robot logs: the differential-drive motion model.
-  lidar::SlamOptions slam_options;
-  slam_options.motion.kind = lidar::MotionModelKind::kDifferentialDrive;
+  lidar::SlamOptions slam_options = CarmenSlamOptions();
+  slam_options.filter.seed = options.seed;
   // Wall and processor time: on a shared machine the processor time is the figure that says
   // what one core does (the run is single-threaded).
   const auto start = std::chrono::steady_clock::now();
@@ -84,20 +92,6 @@ int RunSlamCommand(const SlamCommandOptions& options) {
   for (const lidar::TrajectoryPoint& p : result.trajectory) trajectory.push_back({p.t_s, p.pose});
   if (!options.trajectory_path.empty()) eval::WriteTrajectory(options.trajectory_path, trajectory);
   if (!options.map_path.empty()) io::WritePng(options.map_path, MapImage(result.map));
-
-  // Scoring: the estimate at each scan against the log's reference pose there.
-  std::vector<Pose2> estimate;
-  std::vector<Pose2> reference;
-  std::size_t scan = 0;
-  for (const io::CarmenRecord& r : log.records) {
-    if (!r.scan) continue;
-    if (scan < result.scan_states.size() && r.reference_pose &&
-        result.scan_states[scan].stamp == FromSeconds(r.t_s)) {
-      estimate.push_back(result.scan_states[scan].pose);
-      reference.push_back(*r.reference_pose);
-    }
-    ++scan;
-  }
 
   const double duration_s = log.records.back().t_s - log.records.front().t_s;
   std::cout << fmt::format("log         {} ({} records, {} scans, {} lines skipped)\n",
@@ -119,8 +113,7 @@ int RunSlamCommand(const SlamCommandOptions& options) {
   } else {
     std::cout << "real time   unknown (the log's times do not span an interval)\n";
   }
-  if (estimate.size() >= 2) {
-    const eval::AbsoluteTrajectoryError ate = eval::AbsoluteErrorOfPairs(estimate, reference);
+  if (const eval::AbsoluteTrajectoryError ate = ReferenceError(log, result); ate.matched >= 2) {
     std::cout << fmt::format(
         "ate         {:.3f} m RMSE, heading {:.2f} deg RMSE, against the log's reference poses "
         "({} scans, rigid alignment)\n",

@@ -5,10 +5,12 @@
 // CARMEN log. The log's reference poses are read only to score the result (the summary's ATE
 // line); the localisation sees the raw odometry and the scans alone.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "lookout/eval/trajectory_error.h"
 #include "lookout/io/carmen_log.h"
 #include "lookout/io/png_writer.h"
 #include "lookout/lidar/local_map.h"
@@ -21,10 +23,21 @@ struct SlamCommandOptions {
   std::string trajectory_path;  // empty: not written
   std::string map_path;         // empty: not written; must end in .png
   bool odometry_only = false;
+  std::uint64_t seed = lidar::ParticleFilterOptions{}.seed;  // of the particle filter
 };
+
+// The localisation options `lookout slam` runs CARMEN logs with: robot logs, so the
+// differential-drive motion model.
+lidar::SlamOptions CarmenSlamOptions();
 
 // The records the localisation may see: time, raw odometry and scan (no reference pose).
 std::vector<lidar::SlamRecord> SlamRecordsOf(const io::CarmenLog& log);
+
+// The estimate at each scan against the log's reference pose there (the corrected poses of the
+// Radish logs): ATE after a rigid alignment (eval/trajectory_error.h). `matched` 0 when fewer
+// than two scans pair up.
+eval::AbsoluteTrajectoryError ReferenceError(const io::CarmenLog& log,
+                                             const lidar::SlamResult& result);
 
 // The map as a picture: white free, black occupied, grey unknown (gray level 255 (1 - p)),
 // north up, one pixel per cell.
