@@ -220,6 +220,21 @@ void PrintReplaySummary(const io::ReplayLog& log, const ReplayResult& r,
         *n, log.people_frame, 100.0 * value("people.grid.dynamic_share").value_or(0.0),
         100.0 * value("people.grid.any_share").value_or(0.0));
   }
+  for (const auto& [prefix, name] : {std::pair{"people.tracking", "tracks"},
+                                     std::pair{"people.tracking_baseline", "baseline"}}) {
+    const auto mota = value(std::string(prefix) + ".mota");
+    if (!mota) continue;
+    const auto motp = value(std::string(prefix) + ".motp_m");
+    std::cout << fmt::format(
+        "{:<11} MOTA {:.1f} %, MOTP {}, {} id switches, {} false, {} missed of {} annotated in "
+        "the benchmark's sector (0.75 m; Leigh et al.'s trackers: MOTA 10.2-11.2 %, MOTP "
+        "0.15-0.17 m)\n",
+        name, 100.0 * *mota, motp ? fmt::format("{:.2f} m", *motp) : std::string("-"),
+        value(std::string(prefix) + ".id_switches").value_or(0.0),
+        value(std::string(prefix) + ".false_positives").value_or(0.0),
+        value(std::string(prefix) + ".misses").value_or(0.0),
+        value("people.grid.sector_positions").value_or(0.0));
+  }
   if (const auto ate = value("localisation.ate_rmse_m")) {
     std::cout << fmt::format(
         "ate         {:.3f} m RMSE, heading {:.2f} deg RMSE: the pipeline's ego pose against the "

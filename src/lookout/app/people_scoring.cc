@@ -46,4 +46,45 @@ void PeopleScorer::Report(std::map<std::string, double>& metrics) const {
   report(sector_, "sector_");
 }
 
+PeopleTrackingScorer::PeopleTrackingScorer(std::string prefix,
+                                           const PeopleScoringOptions& options)
+    : prefix_(std::move(prefix)),
+      options_(options),
+      accumulator_(eval::TrackingMetricOptions{options.track_match_distance_m, {}}) {}
+
+bool PeopleTrackingScorer::InSector(const Pose2& lidar_from_vehicle,
+                                    const Eigen::Vector2d& vehicle_point) const {
+  const Eigen::Vector2d p = lidar_from_vehicle * vehicle_point;
+  const double bearing = std::atan2(p.y(), p.x());
+  return bearing >= options_.sector_min_rad && bearing <= options_.sector_max_rad;
+}
+
+void PeopleTrackingScorer::Observe(const io::PeopleFrame* people, const Pose2& lidar_mount,
+                                   const Pose2& ego_pose,
+                                   const std::vector<tracking::Track>& tracks) {
+  const Pose2 lidar_from_vehicle = lidar_mount.Inverse();
+  const Pose2 vehicle_from_odom = ego_pose.Inverse();
+  std::vector<eval::PointObject> truths, hypotheses;
+  if (people) {
+    for (const io::AnnotatedPerson& p : people->people) {
+      if (InSector(lidar_from_vehicle, p.position_m)) {
+        truths.push_back({static_cast<std::int64_t>(p.id), p.position_m});
+      }
+    }
+  }
+  for (const tracking::Track& t : tracks) {
+    const Eigen::Vector2d in_vehicle = vehicle_from_odom * t.Position();
+    if (InSector(lidar_from_vehicle, in_vehicle)) {
+      hypotheses.push_back({static_cast<std::int64_t>(t.id), in_vehicle});
+    }
+  }
+  accumulator_.AddFrame(truths, hypotheses);
+  ++frames_;
+}
+
+void PeopleTrackingScorer::Report(std::map<std::string, double>& metrics) const {
+  if (frames_ == 0) return;
+  for (const auto& [key, value] : accumulator_.Values(prefix_)) metrics[key] = value;
+}
+
 }  // namespace lookout::app

@@ -13,14 +13,23 @@
 // The benchmark's own evaluation (leg_tracker_benchmarks' clear_mot.py) counts only people
 // between -80 and +12 deg of bearing in the laser frame, where its annotators marked everyone
 // (their field of view); the `sector` figures repeat the shares over that sector.
+//
+// Tracks (PeopleTrackingScorer) are scored as that evaluation scores its trackers: CLEAR MOT
+// with a match within 0.75 m, people and tracks in the sector only, every scan from the first
+// annotated one to the last a frame (a scan without annotations has no person to match, so its
+// tracks in the sector are false positives), so that MOTA and MOTP stand beside Leigh et al.'s
+// published figures (ICRA 2015, Table III).
 
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "lookout/core/messages.h"
 #include "lookout/core/pose2.h"
+#include "lookout/eval/tracking_metrics.h"
 #include "lookout/io/replay_log.h"
+#include "lookout/tracking/tracker.h"
 
 namespace lookout::app {
 
@@ -29,6 +38,7 @@ struct PeopleScoringOptions {
   // The bearing sector of the benchmark's evaluation, in the scan's frame.
   double sector_min_rad = DegToRad(-80.0);
   double sector_max_rad = DegToRad(12.0);
+  double track_match_distance_m = 0.75;  // clear_mot.py's max_match_threshold
 };
 
 class PeopleScorer {
@@ -56,6 +66,29 @@ class PeopleScorer {
   PeopleScoringOptions options_;
   Counts all_;
   Counts sector_;
+};
+
+class PeopleTrackingScorer {
+ public:
+  // `prefix` names the tracker in the metric keys ("people.tracking").
+  explicit PeopleTrackingScorer(std::string prefix, const PeopleScoringOptions& options = {});
+
+  // One frame: the scan's annotations (nullptr: none), the lidar's mount, the ego pose at the
+  // scan (the vehicle frame in the odometry frame) and the confirmed tracks (odometry frame).
+  void Observe(const io::PeopleFrame* people, const Pose2& lidar_mount, const Pose2& ego_pose,
+               const std::vector<tracking::Track>& tracks);
+
+  // PREFIX.mota, .motp_m, .id_switches, .false_positives, .misses, ... as
+  // eval::TrackingMetricsAccumulator names them; absent without a frame.
+  void Report(std::map<std::string, double>& metrics) const;
+
+ private:
+  bool InSector(const Pose2& lidar_from_vehicle, const Eigen::Vector2d& vehicle_point) const;
+
+  std::string prefix_;
+  PeopleScoringOptions options_;
+  eval::TrackingMetricsAccumulator accumulator_;
+  std::int64_t frames_ = 0;
 };
 
 }  // namespace lookout::app

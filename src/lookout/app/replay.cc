@@ -36,6 +36,15 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
   std::size_t next_reference = 0;
   std::optional<PeopleScorer> grid_people;
   if (!log.people.empty() && pipeline.grid()) grid_people.emplace("people.grid");
+  // Tracks are scored over the annotated span, every scan of it a frame (people_scoring.h).
+  std::optional<PeopleTrackingScorer> people_tracks, people_baseline_tracks;
+  const std::size_t first_annotated = log.people.empty() ? 0 : log.people.front().scan_index;
+  const std::size_t last_annotated = log.people.empty() ? 0 : log.people.back().scan_index;
+  const TrackingStage* const tracking = pipeline.tracking();
+  if (!log.people.empty() && tracking != nullptr) {
+    people_tracks.emplace("people.tracking");
+    if (tracking->baseline() != nullptr) people_baseline_tracks.emplace("people.tracking_baseline");
+  }
   std::vector<Pose2> estimate, reference;
   double scoring_s = 0.0;
 
@@ -50,6 +59,18 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
     if (people && recorder) recorder->Write(*people);
     const WallClock::time_point scoring_start = WallClock::now();
     if (people && grid_people) grid_people->Observe(*people, scan.mount, cycle.objects);
+    if (people_tracks && tracking && cycle.index >= first_annotated &&
+        cycle.index <= last_annotated) {
+      // A cycle the tracker did not run (no objects) shows no track.
+      const bool ran = cycle.objects && tracking->last_stamp() == scan.stamp;
+      static const std::vector<tracking::Track> kNone;
+      const Pose2 ego = cycle.objects ? cycle.objects->ego_pose : Pose2();
+      people_tracks->Observe(people, scan.mount, ego, ran ? tracking->tracks() : kNone);
+      if (people_baseline_tracks) {
+        people_baseline_tracks->Observe(people, scan.mount, ego,
+                                        ran ? tracking->baseline_tracks() : kNone);
+      }
+    }
     while (next_reference < log.reference.size() &&
            log.reference[next_reference].stamp < scan.stamp) {
       ++next_reference;
@@ -82,6 +103,8 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
     m["replay.scans_without_pose"] = static_cast<double>(pipeline.grid()->skipped_scans());
   }
   if (grid_people) grid_people->Report(m);
+  if (people_tracks) people_tracks->Report(m);
+  if (people_baseline_tracks) people_baseline_tracks->Report(m);
   if (estimate.size() >= 2) {
     const eval::AbsoluteTrajectoryError ate = eval::AbsoluteErrorOfPairs(estimate, reference);
     m["localisation.ate_rmse_m"] = ate.ate_rmse_m;
