@@ -144,8 +144,12 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
         const Detection& d = detections[static_cast<std::size_t>(j)];
         if (!ClassesCompatible(node->track.object_class, d.object_class)) continue;
         const Eigen::Vector2d v = d.position_m - p.combined.z;
-        if (Nis2(v, p.combined.S + d.covariance) > gate) continue;
-        b.gated.push_back({j, ImmLogLikelihood(b.predicted, p, d.position_m, d.covariance), {}});
+        // Written so that a NaN (a detection or a track far beyond any road, squares overflowing)
+        // fails the gate and the score instead of passing them.
+        if (!(Nis2(v, p.combined.S + d.covariance) <= gate)) continue;
+        const double log_likelihood = ImmLogLikelihood(b.predicted, p, d.position_m, d.covariance);
+        if (!std::isfinite(log_likelihood)) continue;
+        b.gated.push_back({j, log_likelihood, {}});
       }
       work.branches.push_back(std::move(b));
     }

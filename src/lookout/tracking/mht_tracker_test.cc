@@ -374,6 +374,32 @@ TEST(MhtTrackerTest, BadInputIsRefusedOrDropped) {
   EXPECT_EQ(tracker.ConfirmedTracks().size(), 1u) << "coasting through empty scans";
 }
 
+// Finite but absurd detections (far beyond any road, tiny or huge covariances) must not crash
+// the tracker or spoil the other tracks with NaN.
+TEST(MhtTrackerTest, ExtremeButFiniteDetectionsSpoilNothing) {
+  MhtTracker tracker;
+  Rng rng(17);
+  for (int k = 0; k < 30; ++k) {
+    std::vector<Detection> scan = {At({2.0 * kDt * k, 0.0}, ObjectClass::kCar, 2)};
+    scan.push_back(At({1e200, -1e200}));
+    scan.push_back(At({rng.Uniform(-1e150, 1e150), 3.0}, ObjectClass::kUnknown, 1, 1e-150));
+    scan.push_back(At({5.0, 5.0}, ObjectClass::kUnknown, 1, 1e150));
+    ASSERT_TRUE(tracker.Step(k * kStep, scan));
+  }
+  bool found = false;
+  for (const std::vector<Track>& tracks : tracker.HypothesisTracks()) {
+    for (const Track& t : tracks) {
+      if (!t.state.mean.allFinite()) continue;  // a track started at 1e200 may overflow; alone
+      if ((t.Position() - Eigen::Vector2d(2.0 * kDt * 29, 0.0)).norm() < 0.5) found = true;
+    }
+  }
+  EXPECT_TRUE(found) << "the car's track survives its absurd neighbours";
+  for (const double p : tracker.HypothesisProbabilities()) EXPECT_TRUE(std::isfinite(p));
+  const std::vector<Track> confirmed = tracker.ConfirmedTracks();
+  ASSERT_FALSE(confirmed.empty());
+  EXPECT_TRUE(confirmed[0].state.mean.allFinite());
+}
+
 TEST(MhtTrackerTest, ValidateNamesTheWrongField) {
   MhtOptions o;
   o.detection_probability = 1.0;
