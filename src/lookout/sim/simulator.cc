@@ -106,6 +106,7 @@ TruthFrame MakeTruth(const Simulator& sim, TimeNs stamp, const Scene& scene,
     actor.contact_time_s = contact_times[i];
     truth.actors.push_back(std::move(actor));
   }
+  truth.lidar_beam_owner = lidar.owner;
   return truth;
 }
 

@@ -36,6 +36,11 @@ struct TruthFrame {
   TimeNs stamp = 0;
   EgoTruth ego;
   std::vector<ActorTruth> actors;  // only the actors present at `stamp`
+  // What each beam of the lidar scan at `stamp` hit, beam for beam: kStaticOwner, an actor
+  // index (ActorTruth::index), or kNoHit. The geometric cast, before noise and dropouts: a
+  // beam the scan reports as a dropout still has its owner here. For scoring per-beam
+  // classifications (moving and static hits); not part of any message a stage receives.
+  std::vector<int> lidar_beam_owner;
 };
 
 // True occupancy and velocity per cell, for any grid geometry (world frame).
