@@ -111,15 +111,17 @@ void LidarLocaliser::Correct(std::span<const Eigen::Vector2d> points, const Pose
   // Search once around the mean; every particle takes the same correction, keeping the
   // spread the motion model gave them.
   const Pose2 mean = EstimateFromParticles(particles_).mean;
-  const Pose2 matched = MatchScan(map_, points, mean, SearchWindowFor(increment, m), m).pose;
+  const SearchWindow window = SearchWindowFor(increment, m);
+  const Pose2 matched = MatchScan(map_, points, mean, window, m).pose;
   const Pose2 correction = matched * mean.Inverse();
   const double scale = m.effective_beams / static_cast<double>(points.size());
   std::vector<double> log_weights(particles_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     Particle& p = particles_[i];
+    const PosePrior prior = PriorFromWindow(p.pose, window);
     p.pose = correction * p.pose;
     p.pose = RefineGaussNewton(map_, points, p.pose, options_.filter.particle_refine_iterations,
-                               m)
+                               m, options_.filter.refine_with_prior ? &prior : nullptr)
                  .pose;
     log_weights[i] = p.log_weight + scale * ScanLogLikelihood(map_, p.pose, points, m);
   }
@@ -141,16 +143,28 @@ void LidarLocaliser::Correct(std::span<const Eigen::Vector2d> points, const Pose
   }
 }
 
-void LidarLocaliser::InsertScan(const Pose2& pose, const LidarScan& scan,
-                                std::span<const Eigen::Vector2d> points) {
+void LidarLocaliser::MapScan(const LidarScan& scan, std::span<const Eigen::Vector2d> hits,
+                             std::span<const Eigen::Vector2d> free_ends) {
+  if (scans_.empty() || scans_.back().state.stamp != scan.stamp) return;
+  const Pose2& pose = scans_.back().state.pose;
   map_.RecentreOn(pose.translation);
-  std::vector<Eigen::Vector2d> hits;
-  hits.reserve(points.size());
-  for (const Eigen::Vector2d& p : points) hits.push_back(pose * p);
-  map_.InsertScan(pose * scan.mount.translation, hits, {});
+  std::vector<Eigen::Vector2d> hits_map;
+  hits_map.reserve(hits.size());
+  for (const Eigen::Vector2d& p : hits) hits_map.push_back(pose * p);
+  std::vector<Eigen::Vector2d> free_map;
+  free_map.reserve(free_ends.size());
+  for (const Eigen::Vector2d& p : free_ends) free_map.push_back(pose * p);
+  map_.InsertScan(pose * scan.mount.translation, hits_map, free_map);
 }
 
 std::optional<EgoState> LidarLocaliser::AddScan(const LidarScan& scan, const Pose2& odometry) {
+  const std::optional<EgoState> state = LocaliseScan(scan, odometry);
+  if (state) MapScan(scan, ExtractScanPoints(scan, options_.matcher).all, {});
+  return state;
+}
+
+std::optional<EgoState> LidarLocaliser::LocaliseScan(const LidarScan& scan,
+                                                     const Pose2& odometry) {
   if (!Finite(odometry) || (!scans_.empty() && scan.stamp < scans_.back().state.stamp)) {
     ++rejected_;
     return std::nullopt;
@@ -181,7 +195,6 @@ std::optional<EgoState> LidarLocaliser::AddScan(const LidarScan& scan, const Pos
       state.yaw_rate_radps = WrapAngle(moved.yaw) / dt;
     }
   }
-  InsertScan(state.pose, scan, points.all);
   scans_.push_back({state, odometry});
   DropOldHistory(scan.stamp);
   ++scan_index_;

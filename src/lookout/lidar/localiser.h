@@ -59,10 +59,21 @@ class LidarLocaliser final : public EgoPoseSource {
   // scans. Readings going back in time or not finite are refused and counted.
   bool AddOdometry(TimeNs t, const Pose2& odometry);
 
-  // One scan with the raw odometry pose at its stamp: runs the filter and maps the scan.
-  // The first scan fixes the map frame at its odometry pose. Refused (nullopt, counted) when
-  // its stamp is earlier than the previous scan's or its odometry is not finite.
+  // One scan with the raw odometry pose at its stamp: runs the filter and maps every return
+  // of the scan (LocaliseScan, then MapScan with all returns). The first scan fixes the map
+  // frame at its odometry pose. Refused (nullopt, counted) when its stamp is earlier than the
+  // previous scan's or its odometry is not finite.
   std::optional<EgoState> AddScan(const LidarScan& scan, const Pose2& odometry);
+
+  // The two halves of AddScan, for a caller that decides what to map from the scan localised
+  // against the map as it was (the lidar chain classifies the hits in between and maps only
+  // the static ones). LocaliseScan runs steps 1-6 and records the estimate; MapScan inserts
+  // returns (vehicle frame) at the estimate of the last LocaliseScan: `hits` end in occupied
+  // cells, `free_ends` only clear space. A MapScan without an accepted LocaliseScan before it
+  // does nothing.
+  std::optional<EgoState> LocaliseScan(const LidarScan& scan, const Pose2& odometry);
+  void MapScan(const LidarScan& scan, std::span<const Eigen::Vector2d> hits,
+               std::span<const Eigen::Vector2d> free_ends);
 
   // The latest scan estimate at or before t composed with the odometry since (interpolated
   // between readings; held for up to max_extrapolation_s past the newest). The covariance is
@@ -87,8 +98,6 @@ class LidarLocaliser final : public EgoPoseSource {
   std::optional<Pose2> OdometryAt(TimeNs t) const;
   void Predict(const Pose2& increment);
   void Correct(std::span<const Eigen::Vector2d> points, const Pose2& increment);
-  void InsertScan(const Pose2& pose, const LidarScan& scan,
-                  std::span<const Eigen::Vector2d> points);
   void DropOldHistory(TimeNs newest);
 
   SlamOptions options_;

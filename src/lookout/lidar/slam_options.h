@@ -100,6 +100,12 @@ struct ParticleFilterOptions {
   double resample_ess_share = 0.5;
   // Gauss-Newton iterations refining each particle after the correlative search.
   int particle_refine_iterations = 8;
+  // With it, each particle's refinement carries the odometry prior centred on the particle's
+  // own motion sample (sigma: half the search window), so each particle moves to its own
+  // posterior mode: the scan decides the directions it constrains, the odometry the others
+  // (a corridor's axis, an open road). Without it the refinement has no prior and the
+  // correlative search's pick along such an axis stays.
+  bool refine_with_prior = false;
   std::uint64_t seed = 4;
 
   void Validate(const std::string& source = "lidar particle filter options") const;
