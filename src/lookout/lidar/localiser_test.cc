@@ -6,6 +6,7 @@
 
 #include "lookout/core/random.h"
 #include "lookout/lidar/lidar_test_support.h"
+#include "lookout/lidar/scan_matcher.h"
 #include "lookout/lidar/slam.h"
 
 namespace lookout::lidar {
@@ -168,6 +169,43 @@ TEST(RunSlam, OneTrajectoryPosePerRecordAndOdometryOnlyIsTheOdometry) {
   for (const EgoState& s : slam.scan_states) at_scans.push_back(s.pose);
   EXPECT_LT(Rmse(at_scans, drive.truth), 0.05);
   EXPECT_GT(slam.map.geometry.width, 100);
+}
+
+}  // namespace
+}  // namespace lookout::lidar
+
+namespace lookout::lidar {
+namespace {
+
+// LocaliseScan then MapScan with every return is AddScan, pose for pose; mapping only part of
+// a scan changes what the next scan is matched against, and a MapScan for a scan that was not
+// localised does nothing.
+TEST(LidarLocaliser, LocaliseThenMapIsAddScan) {
+  const Drive drive = SimulateDrive(9, 2);
+  LidarLocaliser whole(TestOptions(MotionModelKind::kBicycle));
+  LidarLocaliser halves(TestOptions(MotionModelKind::kBicycle));
+  LidarLocaliser half_mapped(TestOptions(MotionModelKind::kBicycle));
+  bool differs = false;
+  for (std::size_t k = 0; k < drive.scans.size(); ++k) {
+    const LidarScan& scan = drive.scans[k];
+    const EgoState a = *whole.AddScan(scan, drive.odometry[k]);
+    const EgoState b = *halves.LocaliseScan(scan, drive.odometry[k]);
+    const std::vector<Eigen::Vector2d> all = ExtractScanPoints(scan, MatcherOptions{}).all;
+    halves.MapScan(scan, all, {});
+    EXPECT_EQ(a.pose.x(), b.pose.x());
+    EXPECT_EQ(a.pose.y(), b.pose.y());
+    EXPECT_EQ(a.pose.yaw, b.pose.yaw);
+    const EgoState c = *half_mapped.LocaliseScan(scan, drive.odometry[k]);
+    const std::vector<Eigen::Vector2d> first_half(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2));
+    half_mapped.MapScan(scan, first_half, {});
+    differs = differs || c.pose.x() != a.pose.x();
+  }
+  EXPECT_TRUE(differs);
+  const std::int64_t inserted = halves.map().scans_inserted();
+  LidarScan stale = drive.scans.back();
+  stale.stamp += FromSeconds(1.0);  // never localised
+  halves.MapScan(stale, ExtractScanPoints(stale, MatcherOptions{}).all, {});
+  EXPECT_EQ(halves.map().scans_inserted(), inserted);
 }
 
 }  // namespace

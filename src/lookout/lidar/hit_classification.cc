@@ -1,0 +1,63 @@
+#include "lookout/lidar/hit_classification.h"
+
+#include <cmath>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::lidar {
+
+void HitClassificationOptions::Validate(const std::string& source) const {
+  if (!std::isfinite(free_log_odds) || free_log_odds >= 0.0f) {
+    throw InputError(source, 0, "free_log_odds", "must be negative (a cell seen free)");
+  }
+  if (!std::isfinite(static_tolerance_m) || static_tolerance_m < 0.0) {
+    throw InputError(source, 0, "static_tolerance_m", "must be finite and >= 0");
+  }
+  if (!std::isfinite(min_range_m) || min_range_m < 0.0) {
+    throw InputError(source, 0, "min_range_m", "must be finite and >= 0");
+  }
+}
+
+bool IsReturn(const LidarScan& scan, std::size_t i, double min_range_m) {
+  const double r = static_cast<double>(scan.ranges_m[i]);
+  // The same "no return" rule as ExtractScanPoints (scan_matcher.cc): a hair under the maximum.
+  const double no_return = scan.max_range_m > 0.0 ? scan.max_range_m * 0.999 : 1e300;
+  return std::isfinite(r) && r >= min_range_m && r < no_return;
+}
+
+Eigen::Vector2d ReturnPoint(const LidarScan& scan, std::size_t i) {
+  const double r = static_cast<double>(scan.ranges_m[i]);
+  const double a = scan.BeamAngle(i);
+  return scan.mount * Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
+}
+
+ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Pose2& vehicle_pose,
+                            const HitClassificationOptions& options) {
+  ScanHitClasses out;
+  out.beam.assign(scan.ranges_m.size(), HitClass::kNoReturn);
+  // The field stores distances between cell centres: a tolerance of t metres is "an occupied
+  // cell centre within t", compared with a hair of slack for the float distances.
+  const auto tolerance = static_cast<float>(options.static_tolerance_m + 1e-6);
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (!IsReturn(scan, i, options.min_range_m)) {
+      ++out.no_return_count;
+      continue;
+    }
+    const CellIndex c = map.CellOf(vehicle_pose * ReturnPoint(scan, i));
+    HitClass k = HitClass::kUnknown;
+    if (map.FieldDistance(c) <= tolerance || map.Occupied(c)) {
+      k = HitClass::kStatic;
+    } else if (map.LogOdds(c) <= options.free_log_odds) {
+      k = HitClass::kDynamic;
+    }
+    out.beam[i] = k;
+    switch (k) {
+      case HitClass::kStatic: ++out.static_count; break;
+      case HitClass::kDynamic: ++out.dynamic_count; break;
+      default: ++out.unknown_count; break;
+    }
+  }
+  return out;
+}
+
+}  // namespace lookout::lidar

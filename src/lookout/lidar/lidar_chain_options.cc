@@ -1,0 +1,45 @@
+#include "lookout/lidar/lidar_chain_options.h"
+
+#include <cmath>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::lidar {
+
+SlamOptions VehicleLocaliserOptions() {
+  SlamOptions o;
+  o.map.window_cells = 2048;
+  o.motion.kind = MotionModelKind::kBicycle;
+  // A car's wheel odometry errs by about 2 % of the distance and its steering reading by a few
+  // milliradians: much tighter than the robot logs' 10 % and 0.02 rad.
+  o.motion.arc_length_noise = 0.02;
+  o.motion.steering_noise_rad = 0.005;
+  // The correlative window (2 sigma of the odometry prior) grows with the increment; one
+  // period at 11 m/s is 0.9 m: 0.05 + 0.9 x 0.05 = 0.095 m, yaw 0.01 + 0.9 x 0.005 rad.
+  o.matcher.search_xy_base_m = 0.05;
+  o.matcher.search_xy_per_m = 0.05;
+  o.matcher.search_yaw_base_rad = 0.01;
+  o.matcher.search_yaw_per_rad = 0.1;
+  o.matcher.search_yaw_per_m = 0.005;
+  o.matcher.max_search_xy_m = 0.4;
+  o.matcher.max_search_yaw_rad = 0.1;
+  o.matcher.coarse_step_rad = 0.005;
+  o.matcher.fine_step_rad = 0.001;
+  o.filter.refine_with_prior = true;
+  return o;
+}
+
+void LidarChainOptions::Validate(const std::string& source) const {
+  localiser.Validate(source);
+  hits.Validate(source);
+  segmentation.Validate(source);
+  if (hits.static_tolerance_m > localiser.map.field_max_distance_m) {
+    throw InputError(source, 0, "hits.static_tolerance_m",
+                     "must be at most map.field_max_distance_m (the field knows no further)");
+  }
+  if (!std::isfinite(dynamic_ray_margin_m) || dynamic_ray_margin_m < 0.0) {
+    throw InputError(source, 0, "dynamic_ray_margin_m", "must be finite and >= 0");
+  }
+}
+
+}  // namespace lookout::lidar

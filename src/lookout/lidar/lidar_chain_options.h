@@ -1,0 +1,35 @@
+#pragma once
+
+// Options of the lidar chain as the vehicle pipeline runs it (seed 004 section IV): the
+// localiser in a car's setting, the moving/static classification of the hits and the scan
+// segmentation. docs/lidar-chain.md explains the values.
+
+#include <string>
+
+#include "lookout/lidar/hit_classification.h"
+#include "lookout/lidar/scan_segmentation.h"
+#include "lookout/lidar/slam_options.h"
+
+namespace lookout::lidar {
+
+// The localiser for a road vehicle at 12.5 Hz: the bicycle motion model, a 102 m map window of
+// 0.05 m cells (the scanner sees 150 m, but the map takes returns up to 40 m), and a search
+// window sized for a car's wheel odometry over one scan period (0.9 m at 11 m/s): a few
+// centimetres and a fraction of a degree, against the robot logs' metre and half radian.
+SlamOptions VehicleLocaliserOptions();
+
+struct LidarChainOptions {
+  SlamOptions localiser = VehicleLocaliserOptions();
+  HitClassificationOptions hits;
+  SegmentationOptions segmentation;
+  // Moving actors must not enter the map of the static world: returns classified dynamic only
+  // clear the space in front of them (their rays), ending short of the return by
+  // dynamic_ray_margin_m; static and unknown returns are mapped as hits. False maps every
+  // return, as `lookout slam` does.
+  bool map_static_only = true;
+  double dynamic_ray_margin_m = 0.2;
+
+  void Validate(const std::string& source = "lidar chain options") const;
+};
+
+}  // namespace lookout::lidar

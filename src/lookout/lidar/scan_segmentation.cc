@@ -1,0 +1,247 @@
+#include "lookout/lidar/scan_segmentation.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::lidar {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+
+// A cosine of incidence below this is treated as this: a beam along a surface would otherwise
+// make the beam spacing on it infinite.
+constexpr double kMinIncidenceCosine = 0.2;
+
+struct Line {
+  Vector2d mean = Vector2d::Zero();
+  Vector2d direction = Vector2d::UnitX();  // unit, oriented from the first point to the last
+};
+
+// Total least squares: the principal axis of the points' scatter through their mean.
+Line FitLine(std::span<const Vector2d> points) {
+  Line line;
+  for (const Vector2d& p : points) line.mean += p;
+  line.mean /= static_cast<double>(points.size());
+  if (points.size() < 2) return line;
+  Matrix2d scatter = Matrix2d::Zero();
+  for (const Vector2d& p : points) scatter += (p - line.mean) * (p - line.mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Matrix2d> eigen(scatter);
+  line.direction = eigen.eigenvectors().col(1);  // the larger eigenvalue's
+  if (line.direction.dot(points.back() - points.front()) < 0.0) line.direction = -line.direction;
+  return line;
+}
+
+Vector2d Project(const Line& line, const Vector2d& p) {
+  return line.mean + line.direction * line.direction.dot(p - line.mean);
+}
+
+// The index of the point furthest from the chord first-last, and its distance.
+std::pair<std::size_t, double> FurthestFromChord(std::span<const Vector2d> points) {
+  const Vector2d a = points.front();
+  const Vector2d chord = points.back() - a;
+  const double length = chord.norm();
+  std::size_t best = 0;
+  double best_distance = 0.0;
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) {
+    const Vector2d d = points[k] - a;
+    const double distance = length > 0.0 ? std::abs(chord.x() * d.y() - chord.y() * d.x()) / length
+                                          : d.norm();
+    if (distance > best_distance) {
+      best_distance = distance;
+      best = k;
+    }
+  }
+  return {best, best_distance};
+}
+
+// Half-open index range [begin, end) of the cluster's points on its front side.
+std::pair<std::size_t, std::size_t> FrontSide(std::span<const Vector2d> points,
+                                              const SegmentationOptions& options) {
+  if (points.size() < 3) return {0, points.size()};
+  const auto [corner, distance] = FurthestFromChord(points);
+  const double threshold = std::max(options.corner_split_m,
+                                    options.breakpoint_noise_sigmas * options.range_noise_m);
+  if (distance <= threshold) return {0, points.size()};
+  // The corner belongs to both sides; the side with more returns is the front.
+  const std::size_t first_side = corner + 1;
+  const std::size_t second_side = points.size() - corner;
+  return first_side >= second_side ? std::pair<std::size_t, std::size_t>{0, corner + 1}
+                                   : std::pair<std::size_t, std::size_t>{corner, points.size()};
+}
+
+// Spacing of two neighbouring beams where they meet a surface of direction `along`, at range r.
+double BeamSpacingOnSurface(const Vector2d& from_lidar, const Vector2d& along, double dphi_rad) {
+  const double r = from_lidar.norm();
+  if (r <= 0.0) return 0.0;
+  const Vector2d beam = from_lidar / r;
+  const double cos_incidence = std::abs(beam.x() * along.y() - beam.y() * along.x());
+  return r * dphi_rad / std::max(cos_incidence, kMinIncidenceCosine);
+}
+
+LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
+                            std::span<const HitClass> classes, const SegmentationOptions& options) {
+  std::vector<Vector2d> points;
+  points.reserve(cluster.beams.size());
+  LidarObject o;
+  for (std::size_t i : cluster.beams) {
+    points.push_back(ReturnPoint(scan, i));
+    if (!classes.empty() && classes[i] == HitClass::kDynamic) o.dynamic = true;
+  }
+  const std::size_t n = points.size();
+  o.point_count = static_cast<std::uint32_t>(n);
+
+  const auto [begin, end] = FrontSide(points, options);
+  const std::span<const Vector2d> front(points.data() + begin, end - begin);
+  const Line line = FitLine(front);
+  o.front_start_m = Project(line, front.front());
+  o.front_end_m = Project(line, front.back());
+  o.point_m = 0.5 * (o.front_start_m + o.front_end_m);
+
+  // Covariance of the middle in the segment's axes (u along, v across).
+  const Vector2d u = line.direction;
+  const Vector2d v(-u.y(), u.x());
+  const Vector2d lidar = scan.mount.translation;
+  const double dphi = std::abs(scan.angle_increment_rad);
+  const double sigma_r2 = options.range_noise_m * options.range_noise_m;
+  const double s1 = BeamSpacingOnSurface(front.front() - lidar, u, dphi);
+  const double s2 = BeamSpacingOnSurface(front.back() - lidar, u, dphi);
+  // Each end: uniform over one beam spacing (s^2 / 12), and the range noise's component along
+  // the surface (at most sigma_r); the middle is their mean, so a quarter of the sum.
+  const double var_along = (s1 * s1 + s2 * s2) / 48.0 + sigma_r2 / 2.0;
+  const double var_across = sigma_r2 / static_cast<double>(front.size());
+  Matrix2d axes;
+  axes.col(0) = u;
+  axes.col(1) = v;
+  o.point_covariance = axes * Eigen::Vector2d(var_along, var_across).asDiagonal() *
+                       axes.transpose();
+
+  Vector2d centroid = Vector2d::Zero();
+  for (const Vector2d& p : points) centroid += p;
+  o.centroid_m = centroid / static_cast<double>(n);
+  const Vector2d in_lidar = scan.mount.Inverse() * o.centroid_m;
+  o.range_m = in_lidar.norm();
+  o.bearing_rad = std::atan2(in_lidar.y(), in_lidar.x());
+
+  double u_min = std::numeric_limits<double>::infinity(), u_max = -u_min;
+  double v_min = u_min, v_max = -u_min;
+  for (const Vector2d& p : points) {
+    const double a = u.dot(p), b = v.dot(p);
+    u_min = std::min(u_min, a);
+    u_max = std::max(u_max, a);
+    v_min = std::min(v_min, b);
+    v_max = std::max(v_max, b);
+  }
+  o.length_m = u_max - u_min;
+  o.width_m = v_max - v_min;
+  o.yaw_rad = std::atan2(u.y(), u.x());
+  if (o.width_m > o.length_m) {
+    std::swap(o.length_m, o.width_m);
+    o.yaw_rad = WrapAngle(o.yaw_rad + 0.5 * kPi);
+  }
+
+  o.velocity_mps = Vector2d::Zero();
+  const double sigma_v = options.velocity_unknown_sigma_mps;
+  o.velocity_covariance = Matrix2d::Identity() * (sigma_v * sigma_v);
+  o.class_pmf.fill(0.0);
+  o.class_pmf[static_cast<std::size_t>(ObjectClass::kUnknown)] = 1.0;
+  return o;
+}
+
+}  // namespace
+
+void SegmentationOptions::Validate(const std::string& source) const {
+  auto check = [&](bool ok, const char* field, const char* problem) {
+    if (!ok) throw InputError(source, 0, field, problem);
+  };
+  check(std::isfinite(breakpoint_incidence_rad) && breakpoint_incidence_rad > 0.0 &&
+            breakpoint_incidence_rad < 0.5 * kPi,
+        "breakpoint_incidence_rad", "must be in (0, pi/2)");
+  check(std::isfinite(range_noise_m) && range_noise_m >= 0.0, "range_noise_m",
+        "must be finite and >= 0");
+  check(std::isfinite(breakpoint_noise_sigmas) && breakpoint_noise_sigmas >= 0.0,
+        "breakpoint_noise_sigmas", "must be finite and >= 0");
+  check(max_gap_beams >= 0, "max_gap_beams", "must be >= 0");
+  check(min_points >= 1, "min_points", "must be >= 1");
+  check(std::isfinite(corner_split_m) && corner_split_m > 0.0, "corner_split_m",
+        "must be finite and > 0");
+  check(std::isfinite(velocity_unknown_sigma_mps) && velocity_unknown_sigma_mps > 0.0,
+        "velocity_unknown_sigma_mps", "must be finite and > 0");
+}
+
+double BreakpointDistance(double r_prev_m, double dphi_rad, const SegmentationOptions& options) {
+  const double noise = options.breakpoint_noise_sigmas * options.range_noise_m;
+  // Beams further apart than the incidence angle: no surface rule holds, only the noise.
+  if (dphi_rad >= options.breakpoint_incidence_rad) return noise;
+  return r_prev_m * std::sin(dphi_rad) / std::sin(options.breakpoint_incidence_rad - dphi_rad) +
+         noise;
+}
+
+std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOptions& options,
+                                     double min_range_m, SegmentationStats* stats) {
+  std::vector<ScanCluster> clusters;
+  SegmentationStats local;
+  ScanCluster current;
+  std::size_t last = 0;
+  Vector2d last_point = Vector2d::Zero();
+  const double dphi = std::abs(scan.angle_increment_rad);
+  auto finish = [&] {
+    if (current.beams.empty()) return;
+    if (current.beams.size() < static_cast<std::size_t>(options.min_points)) {
+      ++local.dropped_small;
+    } else {
+      clusters.push_back(std::move(current));
+      ++local.clusters;
+    }
+    current = ScanCluster{};
+  };
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (!IsReturn(scan, i, min_range_m)) {
+      ++local.no_returns;
+      continue;
+    }
+    const double r = static_cast<double>(scan.ranges_m[i]);
+    const double a = scan.BeamAngle(i);
+    const Vector2d p(r * std::cos(a), r * std::sin(a));  // sensor frame
+    if (!current.beams.empty()) {
+      const std::size_t gap = i - last;
+      const double r_prev = last_point.norm();
+      const bool bridged = gap <= static_cast<std::size_t>(options.max_gap_beams) + 1;
+      if (!bridged ||
+          (p - last_point).norm() > BreakpointDistance(r_prev, static_cast<double>(gap) * dphi,
+                                                       options)) {
+        finish();
+      }
+    }
+    current.beams.push_back(i);
+    last = i;
+    last_point = p;
+  }
+  finish();
+  if (stats) *stats = local;
+  return clusters;
+}
+
+LidarObjectFrame SegmentScan(const LidarScan& scan, std::span<const HitClass> classes,
+                             const Pose2& ego_pose, const SegmentationOptions& options,
+                             double min_range_m, SegmentationStats* stats) {
+  LidarObjectFrame frame;
+  frame.stamp = scan.stamp;
+  frame.mount = scan.mount;
+  frame.ego_pose = ego_pose;
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, options, min_range_m, stats);
+  std::uint32_t id = 0;
+  for (const ScanCluster& cluster : clusters) {
+    LidarObject o = DescribeCluster(scan, cluster, classes, options);
+    if (options.dynamic_only && !o.dynamic) continue;
+    o.id = ++id;
+    frame.objects.push_back(std::move(o));
+  }
+  return frame;
+}
+
+}  // namespace lookout::lidar

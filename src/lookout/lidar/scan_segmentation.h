@@ -1,0 +1,93 @@
+#pragma once
+
+// Segmentation of one scan into objects (seed 004 sections IV.C-D): "Objects are extracted
+// from these laser hit points by a segmentation algorithm. Each segment found is considered as
+// a separate object. An object is marked as dynamic if at least one of its constituting laser
+// points is classified as dynamic ... We also calculate the polar coordinates of center of
+// gravity (centroid) of each segment."
+//
+// Clusters: consecutive returns in beam order, split where two neighbours are further apart
+// than the adaptive breakpoint distance of Borges and Aldon (2004, "Line extraction in 2D range
+// images for mobile robotics"):
+//   D_max = r_prev sin(dphi) / sin(lambda - dphi) + k sigma_r,
+// dphi the angle between the two beams: the distance two returns of one surface can be apart
+// when the surface is seen at grazing incidence lambda, plus the range noise. It grows with
+// range as beams spread. Up to max_gap_beams missing returns (dropouts, NaN) may lie between
+// two points of one cluster; dphi then spans the gap.
+//
+// Per cluster (a LidarObject, vehicle frame):
+//   front segment  the total-least-squares line of the points, split once at the point
+//                  furthest from it when the points form an L (two sides of a box); the side
+//                  with more returns is the front (the one facing the lidar: it spans the
+//                  larger angle, as stereo::FrontSegmentFacing defines it for the camera).
+//                  Its ends are the projections of its first and last points on the line.
+//   point_m        the front segment's middle; covariance from the range and bearing noise
+//                  (the line's offset, sigma_r^2 / n across it) and from where the ends really
+//                  are (the object's edge lies anywhere between the last return on it and the
+//                  first beam past it: one beam spacing, uniform, per end, along it);
+//   centroid       mean of the points; range and bearing of it from the lidar's origin;
+//   extent         the points' bounding rectangle in the front segment's axes (a box seen on
+//                  one or two sides gets its sides' directions);
+//   velocity       none: one scan says nothing of motion. Zero with velocity_unknown_sigma_mps
+//                  on each axis, so fusion and tracking give it no weight;
+//   dynamic        any point dynamic (the paper's rule);
+//   class          unknown (a scan's outline does not tell a pedestrian from a pole).
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "lookout/core/messages.h"
+#include "lookout/lidar/hit_classification.h"
+
+namespace lookout::lidar {
+
+struct SegmentationOptions {
+  // Borges-Aldon: the grazing incidence angle beyond which a surface is split, the range noise
+  // of the scanner (1-sigma) and the noise multiple.
+  double breakpoint_incidence_rad = 10.0 * kPi / 180.0;
+  double range_noise_m = 0.03;
+  double breakpoint_noise_sigmas = 3.0;
+  // Missing returns (no return, NaN) bridged inside one cluster.
+  int max_gap_beams = 2;
+  // Clusters with fewer returns are dropped (a lone return is noise as often as an object).
+  int min_points = 2;
+  // A cluster is split into two sides when a point lies further than this from the line of
+  // all its points and further than breakpoint_noise_sigmas range sigmas.
+  double corner_split_m = 0.1;
+  // Report only the dynamic objects (the paper's list, IV.D); false keeps static ones too.
+  bool dynamic_only = true;
+  // 1-sigma of each velocity axis of an object that has no velocity estimate.
+  double velocity_unknown_sigma_mps = 100.0;
+
+  void Validate(const std::string& source = "lidar segmentation options") const;
+};
+
+// Borges-Aldon's D_max for two returns dphi apart, the first at range r_prev.
+double BreakpointDistance(double r_prev_m, double dphi_rad, const SegmentationOptions& options);
+
+// One cluster: the beams it holds, first to last, in scan order.
+struct ScanCluster {
+  std::vector<std::size_t> beams;
+};
+
+struct SegmentationStats {
+  std::int64_t clusters = 0;
+  std::int64_t dropped_small = 0;  // under min_points
+  std::int64_t no_returns = 0;     // beams that were not returns
+};
+
+// The clusters of `scan` (every return, whatever its class). Pure; O(beams).
+std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOptions& options,
+                                     double min_range_m, SegmentationStats* stats = nullptr);
+
+// The objects of one scan: cluster, then describe each (see above). `classes` holds one class
+// per beam (ClassifyHits); an empty span means "unknown" for every return, for a caller
+// without a map. The frame is stamped with the scan, carries its mount and `ego_pose` (the
+// vehicle in the odometry frame). Ids count from 1 in scan order. Pure.
+LidarObjectFrame SegmentScan(const LidarScan& scan, std::span<const HitClass> classes,
+                             const Pose2& ego_pose, const SegmentationOptions& options,
+                             double min_range_m, SegmentationStats* stats = nullptr);
+
+}  // namespace lookout::lidar

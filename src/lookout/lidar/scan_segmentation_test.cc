@@ -1,0 +1,211 @@
+#include "lookout/lidar/scan_segmentation.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "lookout/core/input_error.h"
+#include "lookout/sim/raycast.h"
+#include "lookout/sim/shapes.h"
+
+namespace lookout::lidar {
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+
+// A 160-degree scan at 0.25 degrees from the vehicle's origin (mount at the origin), cast
+// exactly (no noise) against `world`.
+LidarScan CastScan(const std::vector<sim::Shape>& world) {
+  LidarScan scan;
+  scan.angle_min_rad = -80.0 * kDeg;
+  scan.angle_increment_rad = 0.25 * kDeg;
+  scan.max_range_m = 80.0;
+  sim::Fan fan;
+  fan.angle_min_rad = scan.angle_min_rad;
+  fan.angle_increment_rad = scan.angle_increment_rad;
+  fan.count = 641;
+  fan.max_range_m = scan.max_range_m;
+  const sim::FanHits hits = sim::CastFan(fan, world, {}, 0);
+  for (double r : hits.range_m) scan.ranges_m.push_back(static_cast<float>(r));
+  return scan;
+}
+
+// Two boxes (a car seen on its rear and its side, a van turned), a wall and a pole.
+std::vector<sim::Shape> Scene() {
+  const int s = sim::kStaticOwner;
+  return {
+      sim::Shape::Box(Pose2(10.0, 3.0, 0.0), 4.5, 1.8, s),      // car: rear faces the lidar
+      sim::Shape::Box(Pose2(15.0, -4.0, 0.5), 4.0, 2.0, s),     // van, turned
+      sim::Shape::Box(Pose2(30.0, -25.0, 0.0), 0.3, 20.0, s),   // wall, x = 29.85 facing us
+      sim::Shape::Circle({5.0, -8.0}, 0.15, s),                 // pole
+  };
+}
+
+SegmentationOptions KeepAll() {
+  SegmentationOptions o;
+  o.dynamic_only = false;
+  return o;
+}
+
+const LidarObject* Nearest(const LidarObjectFrame& f, const Eigen::Vector2d& p) {
+  const LidarObject* best = nullptr;
+  for (const LidarObject& o : f.objects) {
+    if (!best || (o.centroid_m - p).norm() < (best->centroid_m - p).norm()) best = &o;
+  }
+  return best;
+}
+
+TEST(ScanSegmentation, TwoBoxesAWallAndAPoleAreFourObjects) {
+  const LidarScan scan = CastScan(Scene());
+  SegmentationStats stats;
+  const LidarObjectFrame f = SegmentScan(scan, {}, Pose2(1.0, 2.0, 0.3), KeepAll(), 0.1, &stats);
+  ASSERT_EQ(f.objects.size(), 4u);
+  EXPECT_EQ(stats.clusters, 4);
+  EXPECT_EQ(f.ego_pose.x(), 1.0);
+  for (std::size_t k = 0; k < f.objects.size(); ++k) EXPECT_EQ(f.objects[k].id, k + 1);
+
+  // The car: its rear (x = 7.75, y from 2.1 to 3.9) spans 11.5 degrees against its side's
+  // 5.5: the rear is the front segment, its middle (7.75, 3.0).
+  const LidarObject* car = Nearest(f, {8.5, 2.7});
+  ASSERT_NE(car, nullptr);
+  EXPECT_NEAR(car->point_m.x(), 7.75, 0.02);
+  EXPECT_NEAR(car->point_m.y(), 3.0, 0.05);
+  EXPECT_NEAR((car->front_end_m - car->front_start_m).norm(), 1.8, 0.08);
+  // Extent in the rear's axes: the visible rear (1.8 m) and side (4.5 m, seen to x = 12.25).
+  EXPECT_NEAR(car->length_m, 4.5, 0.1);
+  EXPECT_NEAR(car->width_m, 1.8, 0.08);
+  EXPECT_NEAR(std::abs(std::cos(car->yaw_rad)), 1.0, 1e-3);  // along x
+
+  // The wall's visible face: x = 29.85 from y = -35 to -15; the middle (29.85, -25).
+  const LidarObject* wall = Nearest(f, {29.85, -25.0});
+  EXPECT_NEAR(wall->point_m.x(), 29.85, 0.02);
+  EXPECT_NEAR(wall->point_m.y(), -25.0, 0.3);
+  EXPECT_NEAR(wall->length_m, 20.0, 0.5);
+
+  // The pole: an arc of radius 0.15 about (5, -8); centroid and point within the radius.
+  const LidarObject* pole = Nearest(f, {5.0, -8.0});
+  EXPECT_LT((pole->centroid_m - Eigen::Vector2d(5.0, -8.0)).norm(), 0.15);
+  EXPECT_LT((pole->point_m - Eigen::Vector2d(5.0, -8.0)).norm(), 0.15);
+  EXPECT_LT(pole->length_m, 0.31);
+  // Polar centroid from the lidar's origin.
+  EXPECT_NEAR(pole->range_m, pole->centroid_m.norm(), 1e-9);
+  EXPECT_NEAR(pole->bearing_rad, std::atan2(pole->centroid_m.y(), pole->centroid_m.x()), 1e-9);
+
+  for (const LidarObject& o : f.objects) {
+    EXPECT_GT(o.point_covariance.determinant(), 0.0);
+    EXPECT_GT(o.point_covariance(0, 0), 0.0);
+    EXPECT_FALSE(o.dynamic);
+    EXPECT_EQ(o.cell_count, 0u);
+    // No velocity from one scan: zero with a covariance that says "unknown".
+    EXPECT_EQ(o.velocity_mps, Eigen::Vector2d::Zero());
+    EXPECT_GE(o.velocity_covariance(0, 0), 1e3);
+    EXPECT_DOUBLE_EQ(o.class_pmf[static_cast<std::size_t>(ObjectClass::kUnknown)], 1.0);
+  }
+  // The far wall's middle is less certain along it than the near car's (wider beam spacing).
+  const auto along = [](const LidarObject& o) {
+    const Eigen::Vector2d u = (o.front_end_m - o.front_start_m).normalized();
+    return u.dot(o.point_covariance * u);
+  };
+  EXPECT_GT(along(*wall), along(*car));
+}
+
+TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
+  const LidarScan scan = CastScan(Scene());
+  std::vector<HitClass> classes(scan.ranges_m.size(), HitClass::kNoReturn);
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (std::isfinite(scan.ranges_m[i])) classes[i] = HitClass::kStatic;
+  }
+  // One beam on the car: atan2(3, 7.75) = 21.2 degrees.
+  const auto car_beam = static_cast<std::size_t>(std::lround((21.2 + 80.0) / 0.25));
+  ASSERT_LT(scan.ranges_m[car_beam], 9.0f);
+  classes[car_beam] = HitClass::kDynamic;
+  const LidarObjectFrame all = SegmentScan(scan, classes, Pose2(), KeepAll(), 0.1);
+  int dynamic = 0;
+  for (const LidarObject& o : all.objects) dynamic += o.dynamic ? 1 : 0;
+  EXPECT_EQ(dynamic, 1);
+  // The paper's list: only the dynamic objects.
+  const LidarObjectFrame listed = SegmentScan(scan, classes, Pose2(), SegmentationOptions{}, 0.1);
+  ASSERT_EQ(listed.objects.size(), 1u);
+  EXPECT_TRUE(listed.objects[0].dynamic);
+  EXPECT_NEAR(listed.objects[0].point_m.x(), 7.75, 0.02);
+}
+
+// A wall facing the lidar at distance d with a step of `step` metres in depth at y = 0.
+LidarScan StepScan(double d, double step) {
+  LidarScan scan;
+  scan.angle_min_rad = -5.0 * kDeg;
+  scan.angle_increment_rad = 0.25 * kDeg;
+  scan.max_range_m = 80.0;
+  for (int i = 0; i <= 40; ++i) {
+    const double a = scan.BeamAngle(static_cast<std::size_t>(i));
+    const double x = a < 0.0 ? d : d + step;
+    scan.ranges_m.push_back(static_cast<float>(x / std::cos(a)));
+  }
+  return scan;
+}
+
+TEST(ScanSegmentation, TheBreakpointDistanceGrowsWithRange) {
+  const SegmentationOptions o;
+  EXPECT_LT(BreakpointDistance(5.0, 0.25 * kDeg, o), BreakpointDistance(40.0, 0.25 * kDeg, o));
+  // Borges-Aldon at 10 m, 0.25 degrees, lambda 10 degrees, 3 x 0.03 m.
+  EXPECT_NEAR(BreakpointDistance(10.0, 0.25 * kDeg, o),
+              10.0 * std::sin(0.25 * kDeg) / std::sin(9.75 * kDeg) + 0.09, 1e-12);
+  // The same 0.4 m step in depth separates two objects at 5 m but not at 40 m, where
+  // neighbouring beams on one oblique surface are that far apart.
+  EXPECT_EQ(ClusterScan(StepScan(5.0, 0.4), o, 0.1).size(), 2u);
+  EXPECT_EQ(ClusterScan(StepScan(40.0, 0.4), o, 0.1).size(), 1u);
+}
+
+TEST(ScanSegmentation, NanInfiniteAndNegativeRangesAreSkippedAndCounted) {
+  LidarScan scan = StepScan(5.0, 0.0);  // one flat wall
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  scan.ranges_m[10] = nan;
+  scan.ranges_m[20] = -1.0f;
+  scan.ranges_m[21] = inf;  // two missing in a row: still bridged (max_gap_beams = 2)
+  SegmentationStats stats;
+  std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, 0.1, &stats);
+  EXPECT_EQ(clusters.size(), 1u);
+  EXPECT_EQ(stats.no_returns, 3);
+  EXPECT_EQ(clusters[0].beams.size(), 41u - 3u);
+  // Three missing in a row split it.
+  scan.ranges_m[22] = -inf;
+  clusters = ClusterScan(scan, SegmentationOptions{}, 0.1, &stats);
+  EXPECT_EQ(clusters.size(), 2u);
+  EXPECT_EQ(stats.no_returns, 4);
+  // A scan of nothing but bad values gives no object and no crash.
+  scan.ranges_m.assign(41, nan);
+  const LidarObjectFrame f = SegmentScan(scan, {}, Pose2(), KeepAll(), 0.1, &stats);
+  EXPECT_TRUE(f.objects.empty());
+  EXPECT_EQ(stats.no_returns, 41);
+}
+
+TEST(ScanSegmentation, SmallClustersAreDroppedAndCounted) {
+  LidarScan scan = StepScan(5.0, 0.0);
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (i != 30) scan.ranges_m[i] = std::numeric_limits<float>::infinity();
+  }
+  SegmentationStats stats;
+  EXPECT_TRUE(ClusterScan(scan, SegmentationOptions{}, 0.1, &stats).empty());
+  EXPECT_EQ(stats.dropped_small, 1);
+}
+
+TEST(ScanSegmentation, OptionsNameTheBadField) {
+  SegmentationOptions o;
+  o.breakpoint_incidence_rad = 2.0;
+  try {
+    o.Validate();
+    FAIL() << "accepted an incidence beyond pi/2";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "breakpoint_incidence_rad");
+  }
+  o = {};
+  o.min_points = 0;
+  EXPECT_THROW(o.Validate(), InputError);
+}
+
+}  // namespace
+}  // namespace lookout::lidar
