@@ -95,8 +95,37 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
   std::cout << fmt::format("recording   {}\n", recording);
 }
 
+// The pipeline's choices that the command line can make (docs/lidar-chain.md).
+struct PipelineChoices {
+  std::string ego_pose = "odometry";
+  std::string lidar_objects = "grid";
+
+  PipelineOptions Options() const {
+    PipelineOptions o;
+    o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
+                                        : EgoPoseMode::kLidarLocalisation;
+    o.lidar_objects = lidar_objects == "segmentation" ? LidarObjectSource::kSegmentation
+                                                      : LidarObjectSource::kGrid;
+    return o;
+  }
+};
+
+void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
+  command
+      ->add_option("--ego-pose", choices.ego_pose,
+                   "The grid's ego pose: lidar (the lidar chain's localisation) or odometry "
+                   "(dead reckoning)")
+      ->check(CLI::IsMember({"lidar", "odometry"}));
+  command
+      ->add_option("--lidar-objects", choices.lidar_objects,
+                   "Lidar objects for fusion: grid (rigid clusters) or segmentation (the scan's "
+                   "segments)")
+      ->check(CLI::IsMember({"grid", "segmentation"}));
+}
+
 int Run(const std::string& scenario_path, std::string out_dir, int threads,
-        std::optional<double> snapshot_s, double snapshot_max_speed_mps) {
+        std::optional<double> snapshot_s, double snapshot_max_speed_mps,
+        const PipelineOptions& pipeline_options) {
   ValidateThreads(threads);
   const sim::Scenario scenario =
       scenario_path.empty() ? io::LoadDefaultScenario() : io::LoadScenarioFile(scenario_path);
@@ -114,7 +143,7 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
   const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
   const std::string metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
 
-  Pipeline pipeline(PipelineOptions{});
+  Pipeline pipeline(pipeline_options);
   RunOptions options;
   options.threads = threads;
   options.recording_path = recording;
@@ -130,7 +159,8 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
   return 0;
 }
 
-int Eval(const std::vector<std::string>& paths, const std::string& json_path, int threads) {
+int Eval(const std::vector<std::string>& paths, const std::string& json_path, int threads,
+         const PipelineOptions& pipeline_options) {
   ValidateThreads(threads);
   // Every file is checked before anything runs: a bad one refuses the whole command.
   std::vector<sim::Scenario> scenarios;
@@ -140,7 +170,7 @@ int Eval(const std::vector<std::string>& paths, const std::string& json_path, in
   std::vector<eval::ScenarioMetrics> results;
   json list = json::array();
   for (const sim::Scenario& s : scenarios) {
-    Pipeline pipeline(PipelineOptions{});
+    Pipeline pipeline(pipeline_options);
     RunOptions options;
     options.threads = threads;
     const RunResult r = RunScenario(s, pipeline, options);
@@ -349,6 +379,8 @@ int RunCli(int argc, char** argv) {
   double snapshot_max_speed_mps = 20.0;
   run->add_option("--snapshot-max-speed", snapshot_max_speed_mps,
                   "Speed (m/s) at which the snapshot's speed map is full bright (default 20)");
+  PipelineChoices choices;
+  AddPipelineChoices(run, choices);
 
   std::vector<std::string> eval_scenarios;
   std::string eval_json;
@@ -356,6 +388,7 @@ int RunCli(int argc, char** argv) {
   eval_cmd->add_option("scenarios", eval_scenarios, "Scenario YAML files")->required();
   eval_cmd->add_option("--json", eval_json, "Write the JSON report here instead of stdout");
   eval_cmd->add_option("--threads", threads, "Worker threads (the output does not depend on it)");
+  AddPipelineChoices(eval_cmd, choices);
 
   std::string bench_json;
   CLI::App* bench = cli.add_subcommand("bench", "Headline performance figures (JSON)");
@@ -399,8 +432,13 @@ int RunCli(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return Run(run_scenario, run_out, threads, snapshot_s, snapshot_max_speed_mps);
-    if (eval_cmd->parsed()) return Eval(eval_scenarios, eval_json, threads);
+    if (run->parsed()) {
+      return Run(run_scenario, run_out, threads, snapshot_s, snapshot_max_speed_mps,
+                 choices.Options());
+    }
+    if (eval_cmd->parsed()) {
+      return Eval(eval_scenarios, eval_json, threads, choices.Options());
+    }
     if (bench->parsed()) return Bench(bench_json);
     if (slam->parsed()) return RunSlamCommand(slam_options);
     if (replay->parsed()) return Replay(replay_options);

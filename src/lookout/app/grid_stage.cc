@@ -13,9 +13,11 @@ constexpr double kFirstCycleDt_s = 0.08;
 
 GridStage::GridStage(const grid::GridOptions& grid_options,
                      const grid::FilterOptions& filter_options,
-                     const grid::GridObjectOptions& object_options)
+                     const grid::GridObjectOptions& object_options,
+                     const EgoPoseSource* pose_source)
     : options_(grid_options),
       object_options_(object_options),
+      pose_source_(pose_source ? pose_source : &ego_),
       grid_(grid::ScrollingGridGeometry(grid_options), filter_options),
       measurement_{grid::ScrollingGridGeometry(grid_options), 0, {}, {}, {}} {
   object_options_.Validate();
@@ -24,7 +26,7 @@ GridStage::GridStage(const grid::GridOptions& grid_options,
 void GridStage::OnOdometry(const EgoOdometry& odometry) { ego_.Add(odometry); }
 
 void GridStage::OnLidar(const LidarScan& scan) {
-  const std::optional<EgoState> ego = ego_.PoseAt(scan.stamp);
+  const std::optional<EgoState> ego = pose_source_->PoseAt(scan.stamp);
   // A scan from before the previous one, or at its time, has nothing to add: dt must be > 0.
   if (!ego || (last_stamp_ && scan.stamp <= *last_stamp_)) {
     ++skipped_scans_;

@@ -1,7 +1,8 @@
 #pragma once
 
-// The extended grid as a pipeline stage: odometry feeds the ego pose (dead reckoning, through
-// the EgoPoseSource interface the lidar chain will also implement), and each lidar scan runs
+// The extended grid as a pipeline stage: the ego pose comes through the EgoPoseSource
+// interface (its own dead reckoning of the odometry, or the lidar chain's localisation), and
+// each lidar scan runs
 // one cycle: scroll the window to the ego, compute the inverse sensor model, update the filter
 // (docs/extended-grid.md steps 1-8), and take the rigid clusters of dynamic cells out of the
 // grid as lidar objects (grid/grid_objects.h).
@@ -26,15 +27,20 @@ namespace lookout::app {
 
 class GridStage : public Stage {
  public:
-  // Validates the options (lookout::InputError).
+  // Validates the options (lookout::InputError). `pose_source`: where the ego pose of each
+  // scan comes from (the lidar chain's localisation, which must outlive this stage and have
+  // seen the scan first); nullptr: the stage's own dead reckoning of the odometry.
   explicit GridStage(const grid::GridOptions& grid_options = {},
                      const grid::FilterOptions& filter_options = {},
-                     const grid::GridObjectOptions& object_options = {});
+                     const grid::GridObjectOptions& object_options = {},
+                     const EgoPoseSource* pose_source = nullptr);
 
   void OnOdometry(const EgoOdometry& odometry) override;
   void OnLidar(const LidarScan& scan) override;
 
   const grid::ExtendedGrid& grid() const { return grid_; }
+  // Where the stage takes its ego pose from.
+  const EgoPoseSource& pose_source() const { return *pose_source_; }
   // The lidar's pose in the odometry frame at the last cycle; nullopt before the first.
   const std::optional<Pose2>& last_sensor_pose() const { return last_sensor_pose_; }
   // The measurement grid of the last cycle, in the grid's window of that cycle.
@@ -53,6 +59,7 @@ class GridStage : public Stage {
   grid::GridOptions options_;
   grid::GridObjectOptions object_options_;
   DeadReckoning ego_;
+  const EgoPoseSource* pose_source_;  // &ego_ unless the constructor was given another
   grid::ExtendedGrid grid_;
   grid::MeasurementGrid measurement_;
   std::optional<TimeNs> last_stamp_;

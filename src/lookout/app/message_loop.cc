@@ -43,7 +43,7 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
       const WallClock::time_point step_start = WallClock::now();
       pipeline.OnLidar(scan);
       result.step_ms.push_back(1e3 * SecondsSince(step_start));
-      // This scan's objects; none when the grid had to skip it (no ego pose).
+      // This scan's objects; none when their source had to skip it (no ego pose).
       const LidarObjectFrame* objects = pipeline.lidar_objects();
       if (objects && objects->stamp != scan.stamp) objects = nullptr;
       if (recorder) {

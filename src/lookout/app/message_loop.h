@@ -51,7 +51,7 @@ struct SensorStreams {
 struct LidarCycle {
   std::size_t index = 0;  // of the scan in SensorStreams::lidar
   const LidarScan* scan = nullptr;
-  // This scan's lidar objects, or nullptr when the grid had to skip the scan (no ego pose).
+  // This scan's lidar objects, or nullptr when their source had to skip the scan (no ego pose).
   const LidarObjectFrame* objects = nullptr;
 };
 

@@ -11,20 +11,42 @@
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
+#include "lookout/app/lidar_chain_stage.h"
 #include "lookout/app/risk_stage.h"
 #include "lookout/app/stage.h"
 #include "lookout/app/tracking_stage.h"
 #include "lookout/core/messages.h"
 #include "lookout/fusion/fusion_engine.h"
+#include "lookout/lidar/lidar_chain_options.h"
 
 namespace lookout::app {
+
+// Where the grid's ego pose comes from (docs/lidar-chain.md compares them).
+enum class EgoPoseMode {
+  kLidarLocalisation,  // the lidar chain's particle filter (needs lidar_chain)
+  kDeadReckoning,      // the grid's own integration of the wheel odometry
+};
+
+// Which lidar objects the pipeline fuses, scores and records (docs/lidar-chain.md).
+enum class LidarObjectSource {
+  kGrid,          // the grid's rigid clusters of dynamic cells (needs grid)
+  kSegmentation,  // the lidar chain's scan segmentation (needs lidar_chain)
+};
 
 struct PipelineOptions {
   bool grid = true;  // the extended grid (docs/extended-grid.md), with its objects
   // How the grid's rigid clusters become lidar objects (grid/grid_objects.h).
   grid::GridObjectOptions grid_objects;
+  // The lidar chain (docs/lidar-chain.md): localisation, moving and static hits,
+  // segmentation. Runs before the grid on every scan.
+  bool lidar_chain = true;
+  lidar::LidarChainOptions lidar_chain_options;
+  // Dead reckoning by default: on the catalogue the grid's velocities are better with its
+  // smoother scan-to-scan motion (docs/lidar-chain.md).
+  EgoPoseMode ego_pose = EgoPoseMode::kDeadReckoning;
+  LidarObjectSource lidar_objects = LidarObjectSource::kGrid;
   // Lidar/stereo fusion of each cycle's lidar objects with the latest stereo frame
-  // (docs/fusion.md); needs the grid's objects.
+  // (docs/fusion.md); needs a source of lidar objects.
   bool fusion = true;
   fusion::FusionOptions fusion_options;
   // Tracking of the fused objects in the odometry frame (app/tracking_stage.h); needs fusion.
@@ -33,6 +55,9 @@ struct PipelineOptions {
   // Collision risk and warnings from the tracks (app/risk_stage.h); needs tracking.
   bool risk = true;
   RiskStageOptions risk_options;
+
+  // Throws lookout::InputError naming the option when a choice needs a part that is off.
+  void Validate() const;
 };
 
 class Pipeline {
@@ -46,10 +71,15 @@ class Pipeline {
 
   // The grid stage, or nullptr when the pipeline runs without it.
   const GridStage* grid() const { return grid_; }
-  // The lidar objects of the last cycle (the grid's rigid clusters, vehicle frame), or nullptr
-  // before the first cycle or without the grid. Check its stamp: a scan the grid had to skip
-  // leaves the previous frame here.
+  // The lidar chain stage, or nullptr when the pipeline runs without it.
+  const LidarChainStage* lidar_chain() const { return lidar_chain_; }
+  // The lidar objects of the last cycle (vehicle frame) from the source the options chose, or
+  // nullptr before the first cycle or without that source. Check its stamp: a scan the source
+  // had to skip leaves the previous frame here.
   const LidarObjectFrame* lidar_objects() const;
+  // The chosen source of lidar objects, and whether it runs.
+  LidarObjectSource object_source() const { return object_source_; }
+  bool lidar_objects_available() const;
   // The fused objects of the last cycle whose lidar objects were fused, or nullptr; and the
   // engine (its statistics, the stereo objects it used). nullptr without fusion.
   const fusion::FusedObjectFrame* fused_objects() const {
@@ -70,6 +100,8 @@ class Pipeline {
  private:
   std::vector<std::unique_ptr<Stage>> stages_;
   const GridStage* grid_ = nullptr;  // owned by stages_
+  const LidarChainStage* lidar_chain_ = nullptr;  // owned by stages_
+  LidarObjectSource object_source_ = LidarObjectSource::kGrid;
   std::optional<fusion::FusionEngine> fusion_;
   StereoFrame latest_stereo_;
   std::optional<fusion::FusedObjectFrame> fused_;

@@ -11,7 +11,9 @@
 
 #include "lookout/app/grid_recording.h"
 #include "lookout/app/grid_scoring.h"
+#include "lookout/app/lidar_hit_scoring.h"
 #include "lookout/app/lidar_object_scoring.h"
+#include "lookout/app/localisation_scoring.h"
 #include "lookout/app/risk_scoring.h"
 #include "lookout/app/tracking_scoring.h"
 #include "lookout/eval/fusion_metrics.h"
@@ -71,8 +73,19 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   if (pipeline.grid()) {
     grid_scorer.emplace(world_from_odom, simulator.static_world(),
                         scenario.sensors.lidar.max_range_m);
-    object_scorer.emplace(world_from_odom);
   }
+  if (pipeline.lidar_objects_available()) object_scorer.emplace(world_from_odom);
+  // The lidar chain's localisation, and the dead reckoning beside it.
+  std::optional<LocalisationScorer> lidar_pose_scorer, odometry_pose_scorer;
+  std::optional<LidarHitScorer> hit_scorer;
+  if (pipeline.lidar_chain()) {
+    lidar_pose_scorer.emplace(world_from_odom, "localisation.");
+    odometry_pose_scorer.emplace(world_from_odom, "localisation.dead_reckoning_");
+    hit_scorer.emplace();
+  }
+  // The window in which an actor counts for the objects' recall: the grid's (objects can
+  // come only from there), or without the grid one of the same size about the ego.
+  const grid::ScrollingGridGeometry default_window{grid::GridOptions{}};
   // The ego's intended route: the scenario's ego path, as a navigation system would give it, in
   // the odometry frame (where the risk stage works).
   std::vector<Eigen::Vector2d> route_odom;
@@ -111,17 +124,30 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
 
   const auto after_cycle = [&](const LidarCycle& cycle) {
     const sim::TruthFrame& truth = log.truth[cycle.index];
-    if (grid_scorer) {
-      grid_scorer->Observe(*pipeline.grid(), truth);
-      if (cycle.objects) {
-        object_scorer->Observe(*cycle.objects, truth,
-                               pipeline.grid()->grid().geometry().WindowGeometry());
+    const TimeNs stamp = cycle.scan->stamp;
+    if (grid_scorer) grid_scorer->Observe(*pipeline.grid(), truth);
+    if (object_scorer && cycle.objects) {
+      GridGeometry window;
+      if (pipeline.grid()) {
+        window = pipeline.grid()->grid().geometry().WindowGeometry();
+      } else {
+        window = default_window.WindowGeometry();
+        window.origin_m = cycle.objects->ego_pose.translation -
+                          0.5 * window.cell_size_m * Eigen::Vector2d(window.width, window.height);
       }
-      const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
-      if (fusion_scorer && cycle.objects && fused && fused->stamp == cycle.scan->stamp) {
-        fusion_scorer->AddFrame(*fused, *cycle.objects, pipeline.fusion()->stereo_at_lidar_time(),
-                                eval::TrueObjectsInVehicleFrame(truth));
-      }
+      object_scorer->Observe(*cycle.objects, truth, window);
+    }
+    const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
+    if (fusion_scorer && cycle.objects && fused && fused->stamp == stamp) {
+      fusion_scorer->AddFrame(*fused, *cycle.objects, pipeline.fusion()->stereo_at_lidar_time(),
+                              eval::TrueObjectsInVehicleFrame(truth));
+    }
+    if (const LidarChainStage* chain = pipeline.lidar_chain()) {
+      const Pose2& true_ego = truth.ego.state.pose;
+      const bool processed = chain->last_stamp() && *chain->last_stamp() == stamp;
+      lidar_pose_scorer->Observe(processed ? chain->last_state() : std::nullopt, true_ego);
+      odometry_pose_scorer->Observe(chain->dead_reckoning().PoseAt(stamp), true_ego);
+      if (processed) hit_scorer->Observe(chain->last_hits(), truth);
     }
     const TrackingStage* tracking = pipeline.tracking();
     const RiskStage* risk = pipeline.risk();
@@ -192,9 +218,28 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
                                                                  : ObjectClass::kUnknown);
     }
   }
-  if (pipeline.grid() && !pipeline.grid()->objects_ms().empty()) {
-    result.metrics.values["lidar_objects.extract_ms_median"] =
-        eval::Median(pipeline.grid()->objects_ms());
+  for (const auto* scorer : {&lidar_pose_scorer, &odometry_pose_scorer}) {
+    if (*scorer) (*scorer)->Report(result.metrics.values);
+  }
+  if (hit_scorer) hit_scorer->Report(result.metrics.values);
+  const LidarChainStage* chain = pipeline.lidar_chain();
+  if (chain && !chain->localise_ms().empty()) {
+    auto& v = result.metrics.values;
+    v["lidar_chain.localise_ms_median"] = eval::Median(chain->localise_ms());
+    v["lidar_chain.hits_ms_median"] = eval::Median(chain->hits_ms());
+    v["lidar_chain.segment_ms_median"] = eval::Median(chain->segment_ms());
+    v["lidar_chain.refused_scans"] = static_cast<double>(chain->refused_scans());
+    v["lidar_chain.skipped_scans"] = static_cast<double>(chain->skipped_scans());
+  }
+  // The extraction time of the objects the pipeline uses.
+  if (pipeline.lidar_objects_available()) {
+    const std::vector<double>& extract_ms =
+        pipeline.object_source() == LidarObjectSource::kSegmentation
+            ? chain->segment_ms()
+            : pipeline.grid()->objects_ms();
+    if (!extract_ms.empty()) {
+      result.metrics.values["lidar_objects.extract_ms_median"] = eval::Median(extract_ms);
+    }
   }
   return result;
 }

@@ -35,9 +35,11 @@ struct HitClassificationOptions {
   // A cell counts as seen free when its log-odds are at most this (the map's miss is -0.3 a
   // scan: -0.5 takes two clear views net of hits).
   float free_log_odds = -0.5f;
-  // A return this close to an occupied cell of the map is static (the field's resolution is
-  // one cell). At most the map's field_max_distance_m (the field knows nothing further).
-  double static_tolerance_m = 0.1;
+  // A return this close to an occupied cell of the map is static. About 2.5 sigma of what
+  // separates a return on a mapped surface from the surface's cells: the localisation error
+  // (a few centimetres), the range noise (0.03 m) and the cell's half width (0.025 m), some
+  // 0.06 m together. At most the map's field_max_distance_m (the field knows no further).
+  double static_tolerance_m = 0.15;
   // Returns nearer than this are not returns (the scanner's own housing, REP 117's minimum).
   double min_range_m = 0.1;
 

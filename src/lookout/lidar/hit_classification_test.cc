@@ -74,14 +74,14 @@ TEST(HitClassification, FreeSpaceIsDynamicOccupiedIsStaticTheRestUnknown) {
 
 TEST(HitClassification, ThresholdsAreOptions) {
   const LocalMap map = WallMap();
-  // Three cells before the wall: dynamic with the default 0.1 m tolerance, static with 0.35 m.
+  // Three cells before the wall: dynamic with the default 0.15 m tolerance, static with 0.35 m.
   const LidarScan scan = ScanOf({{7.72f, 0.0}});
   HitClassificationOptions o;
   EXPECT_EQ(ClassifyHits(map, scan, Pose2(), o).beam[Beam(0.0)], HitClass::kDynamic);
   o.static_tolerance_m = 0.35;
   EXPECT_EQ(ClassifyHits(map, scan, Pose2(), o).beam[Beam(0.0)], HitClass::kStatic);
   // Five clear views make -1.5 (the miss is -0.3); a threshold below that is not reached.
-  o.static_tolerance_m = 0.1;
+  o.static_tolerance_m = 0.15;
   o.free_log_odds = -1.6f;
   EXPECT_EQ(ClassifyHits(map, scan, Pose2(), o).beam[Beam(0.0)], HitClass::kUnknown);
 }

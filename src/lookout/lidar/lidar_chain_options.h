@@ -28,6 +28,13 @@ struct LidarChainOptions {
   // return, as `lookout slam` does.
   bool map_static_only = true;
   double dynamic_ray_margin_m = 0.2;
+  // With map_static_only: every return of a segment with a dynamic return (a moving object by
+  // the paper's rule, IV.C) only clears space, whatever its own class. Meant for an actor's
+  // surface that slides along itself (a cyclist seen from the side), whose returns land mostly
+  // in cells its earlier returns filled and so are static and mapped again. Off: measured
+  // worse (docs/lidar-chain.md), since a wall segment with one false dynamic return then
+  // stays out of the map and gives more of them.
+  bool unmap_dynamic_segments = false;
 
   void Validate(const std::string& source = "lidar chain options") const;
 };

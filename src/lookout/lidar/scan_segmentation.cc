@@ -226,22 +226,34 @@ std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOp
   return clusters;
 }
 
-LidarObjectFrame SegmentScan(const LidarScan& scan, std::span<const HitClass> classes,
-                             const Pose2& ego_pose, const SegmentationOptions& options,
-                             double min_range_m, SegmentationStats* stats) {
+bool HasDynamicBeam(const ScanCluster& cluster, std::span<const HitClass> classes) {
+  if (classes.empty()) return false;
+  return std::any_of(cluster.beams.begin(), cluster.beams.end(),
+                     [&](std::size_t i) { return classes[i] == HitClass::kDynamic; });
+}
+
+LidarObjectFrame DescribeClusters(const LidarScan& scan, std::span<const ScanCluster> clusters,
+                                  std::span<const HitClass> classes, const Pose2& ego_pose,
+                                  const SegmentationOptions& options) {
   LidarObjectFrame frame;
   frame.stamp = scan.stamp;
   frame.mount = scan.mount;
   frame.ego_pose = ego_pose;
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, options, min_range_m, stats);
   std::uint32_t id = 0;
   for (const ScanCluster& cluster : clusters) {
+    if (options.dynamic_only && !HasDynamicBeam(cluster, classes)) continue;
     LidarObject o = DescribeCluster(scan, cluster, classes, options);
-    if (options.dynamic_only && !o.dynamic) continue;
     o.id = ++id;
     frame.objects.push_back(std::move(o));
   }
   return frame;
+}
+
+LidarObjectFrame SegmentScan(const LidarScan& scan, std::span<const HitClass> classes,
+                             const Pose2& ego_pose, const SegmentationOptions& options,
+                             double min_range_m, SegmentationStats* stats) {
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, options, min_range_m, stats);
+  return DescribeClusters(scan, clusters, classes, ego_pose, options);
 }
 
 }  // namespace lookout::lidar

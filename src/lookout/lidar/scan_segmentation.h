@@ -82,6 +82,14 @@ struct SegmentationStats {
 std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOptions& options,
                                      double min_range_m, SegmentationStats* stats = nullptr);
 
+// Whether any beam of `cluster` is dynamic in `classes` (empty: none is).
+bool HasDynamicBeam(const ScanCluster& cluster, std::span<const HitClass> classes);
+
+// The objects of `clusters` of `scan` (ClusterScan), described as above.
+LidarObjectFrame DescribeClusters(const LidarScan& scan, std::span<const ScanCluster> clusters,
+                                  std::span<const HitClass> classes, const Pose2& ego_pose,
+                                  const SegmentationOptions& options);
+
 // The objects of one scan: cluster, then describe each (see above). `classes` holds one class
 // per beam (ClassifyHits); an empty span means "unknown" for every return, for a caller
 // without a map. The frame is stamped with the scan, carries its mount and `ego_pose` (the

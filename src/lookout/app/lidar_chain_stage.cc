@@ -1,0 +1,98 @@
+#include "lookout/app/lidar_chain_stage.h"
+
+#include <chrono>
+
+namespace lookout::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+const lidar::SlamOptions& Validated(const lidar::LidarChainOptions& options) {
+  options.Validate();
+  return options.localiser;
+}
+
+}  // namespace
+
+LidarChainStage::LidarChainStage(const lidar::LidarChainOptions& options,
+                                 const DeadReckoningOptions& odometry)
+    : options_(options), odometry_(odometry), localiser_(Validated(options)) {}
+
+void LidarChainStage::OnOdometry(const EgoOdometry& odometry) {
+  if (!odometry_.Add(odometry)) return;
+  // The localiser composes its latest scan estimate with the odometry since, for poses
+  // between scans: it gets the dead-reckoned pose at each reading.
+  localiser_.AddOdometry(odometry.stamp, odometry_.At(odometry.stamp).pose);
+}
+
+void LidarChainStage::OnLidar(const LidarScan& scan) {
+  if (last_stamp_ && scan.stamp <= *last_stamp_) {
+    ++refused_scans_;
+    return;
+  }
+  const std::optional<EgoState> odometry = odometry_.PoseAt(scan.stamp);
+  if (!odometry) {
+    ++skipped_scans_;
+    return;
+  }
+  const Clock::time_point start = Clock::now();
+  const std::optional<EgoState> state = localiser_.LocaliseScan(scan, odometry->pose);
+  if (!state) {  // the localiser's own refusals: time going back, non-finite odometry
+    ++refused_scans_;
+    return;
+  }
+  const Clock::time_point localised = Clock::now();
+  hits_ = lidar::ClassifyHits(localiser_.map(), scan, state->pose, options_.hits);
+  no_returns_ += hits_.no_return_count;
+  const Clock::time_point classified = Clock::now();
+  const std::vector<lidar::ScanCluster> clusters =
+      lidar::ClusterScan(scan, options_.segmentation, options_.hits.min_range_m);
+  last_objects_ = lidar::DescribeClusters(scan, clusters, hits_.beam, state->pose,
+                                          options_.segmentation);
+  const Clock::time_point segmented = Clock::now();
+  std::vector<bool> unmapped;
+  if (options_.map_static_only && options_.unmap_dynamic_segments) {
+    unmapped.assign(scan.ranges_m.size(), false);
+    for (const lidar::ScanCluster& c : clusters) {
+      if (!lidar::HasDynamicBeam(c, hits_.beam)) continue;
+      for (std::size_t i : c.beams) unmapped[i] = true;
+    }
+  }
+  MapScan(scan, unmapped);
+  const Clock::time_point mapped = Clock::now();
+  localise_ms_.push_back(MsBetween(start, localised));
+  hits_ms_.push_back(MsBetween(localised, classified) + MsBetween(segmented, mapped));
+  segment_ms_.push_back(MsBetween(classified, segmented));
+  last_stamp_ = scan.stamp;
+  last_state_ = state;
+}
+
+void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& unmapped) {
+  std::vector<Eigen::Vector2d> hits;
+  std::vector<Eigen::Vector2d> free_ends;
+  hits.reserve(scan.ranges_m.size());
+  const Eigen::Vector2d origin = scan.mount.translation;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    const lidar::HitClass k = hits_.beam[i];
+    if (k == lidar::HitClass::kNoReturn) continue;
+    const Eigen::Vector2d p = lidar::ReturnPoint(scan, i);
+    const bool clears_only = options_.map_static_only &&
+                             (k == lidar::HitClass::kDynamic || (!unmapped.empty() && unmapped[i]));
+    if (!clears_only) {
+      hits.push_back(p);
+      continue;
+    }
+    const Eigen::Vector2d ray = p - origin;
+    const double r = ray.norm();
+    if (r > options_.dynamic_ray_margin_m) {
+      free_ends.push_back(origin + ray * ((r - options_.dynamic_ray_margin_m) / r));
+    }
+  }
+  localiser_.MapScan(scan, hits, free_ends);
+}
+
+}  // namespace lookout::app

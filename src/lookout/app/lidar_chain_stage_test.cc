@@ -1,0 +1,111 @@
+#include "lookout/app/lidar_chain_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lookout/io/scenario_loader.h"
+#include "lookout/sim/simulator.h"
+
+namespace lookout::app {
+namespace {
+
+LidarScan FlatScan(TimeNs stamp) {
+  LidarScan scan;
+  scan.stamp = stamp;
+  scan.angle_min_rad = -0.5;
+  scan.angle_increment_rad = 0.01;
+  scan.max_range_m = 50.0;
+  scan.ranges_m.assign(101, 10.0f);
+  return scan;
+}
+
+EgoOdometry Odometry(TimeNs stamp, double speed_mps) {
+  EgoOdometry o;
+  o.stamp = stamp;
+  o.speed_mps = speed_mps;
+  return o;
+}
+
+TEST(LidarChainStage, RefusesTimeGoingBackwardsAndCountsIt) {
+  LidarChainStage stage;
+  for (int k = 0; k <= 10; ++k) stage.OnOdometry(Odometry(FromSeconds(0.02 * k), 1.0));
+  stage.OnLidar(FlatScan(FromSeconds(0.16)));
+  ASSERT_TRUE(stage.last_state().has_value());
+  const EgoState first = *stage.last_state();
+  stage.OnLidar(FlatScan(FromSeconds(0.08)));  // back in time
+  stage.OnLidar(FlatScan(FromSeconds(0.16)));  // the same time again
+  EXPECT_EQ(stage.refused_scans(), 2);
+  EXPECT_EQ(stage.localiser().scans_processed(), 1);
+  EXPECT_EQ(*stage.last_stamp(), FromSeconds(0.16));
+  EXPECT_EQ(stage.last_state()->pose.x(), first.pose.x());
+  EXPECT_EQ(stage.localise_ms().size(), 1u);
+}
+
+TEST(LidarChainStage, ScansWithoutOdometryAreSkippedAndCounted) {
+  LidarChainStage stage;
+  stage.OnLidar(FlatScan(0));
+  EXPECT_EQ(stage.skipped_scans(), 1);
+  EXPECT_FALSE(stage.last_state().has_value());
+  EXPECT_FALSE(stage.localisation().PoseAt(0).has_value());
+}
+
+TEST(LidarChainStage, BadRangesAreCountedNotClassified) {
+  LidarChainStage stage;
+  stage.OnOdometry(Odometry(0, 0.0));
+  LidarScan scan = FlatScan(0);
+  scan.ranges_m[3] = std::nanf("");
+  scan.ranges_m[4] = -1.0f;
+  scan.ranges_m[5] = std::numeric_limits<float>::infinity();
+  stage.OnLidar(scan);
+  EXPECT_EQ(stage.no_returns(), 3);
+  EXPECT_EQ(stage.last_hits().no_return_count, 3);
+  EXPECT_EQ(stage.last_hits().unknown_count, 98);  // an empty map knows nothing yet
+}
+
+// The default scenario's first 3 s: the localiser's pose follows the truth, in the odometry
+// frame (the ego's true pose at t = 0), to within a few centimetres, and hardly any return on
+// the static world (walls, parked cars, poles) is called dynamic once the map has begun.
+TEST(LidarChainStage, LocalisesInTheOdometryFrameOnTheDefaultScenario) {
+  sim::Scenario scenario = io::LoadDefaultScenario();
+  scenario.duration_s = 3.0;
+  const sim::Simulator simulator(scenario);
+  const sim::SensorLog log = simulator.Run(1);
+  LidarChainStage stage;
+  const Pose2 odom_from_world = simulator.ego_trajectory().At(0.0).pose.Inverse();
+  std::size_t o = 0;
+  double worst_m = 0.0;
+  double worst_rad = 0.0;
+  std::int64_t false_dynamic = 0;
+  std::int64_t returns = 0;
+  for (std::size_t k = 0; k < log.lidar.size(); ++k) {
+    const LidarScan& scan = log.lidar[k];
+    while (o < log.odometry.size() && log.odometry[o].stamp <= scan.stamp) {
+      stage.OnOdometry(log.odometry[o++]);
+    }
+    stage.OnLidar(scan);
+    ASSERT_TRUE(stage.last_state().has_value());
+    const Pose2 truth = odom_from_world * log.truth[k].ego.state.pose;
+    const std::optional<EgoState> estimate = stage.localisation().PoseAt(scan.stamp);
+    ASSERT_TRUE(estimate.has_value());
+    worst_m = std::max(worst_m, (estimate->pose.translation - truth.translation).norm());
+    worst_rad = std::max(worst_rad, std::abs(WrapAngle(estimate->pose.yaw - truth.yaw)));
+    // The returns on the static world, after the first second of mapping.
+    if (scan.stamp < FromSeconds(1.0)) continue;
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      if (log.truth[k].lidar_beam_owner[i] != sim::kStaticOwner) continue;
+      const lidar::HitClass c = stage.last_hits().beam[i];
+      if (c == lidar::HitClass::kNoReturn) continue;
+      ++returns;
+      if (c == lidar::HitClass::kDynamic) ++false_dynamic;
+    }
+  }
+  EXPECT_EQ(stage.skipped_scans(), 0);
+  EXPECT_LT(worst_m, 0.1);
+  EXPECT_LT(worst_rad, 0.5 * kPi / 180.0);
+  ASSERT_GT(returns, 0);
+  EXPECT_LT(static_cast<double>(false_dynamic) / static_cast<double>(returns), 0.02);
+}
+
+}  // namespace
+}  // namespace lookout::app
