@@ -99,9 +99,11 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
 struct PipelineChoices {
   std::string ego_pose = "odometry";
   std::string lidar_objects = "grid";
+  std::string stereo_class = "on";
 
   PipelineOptions Options() const {
     PipelineOptions o;
+    o.stereo_class.enabled = stereo_class == "on";
     o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
                                         : EgoPoseMode::kLidarLocalisation;
     o.lidar_objects = lidar_objects == "segmentation" ? LidarObjectSource::kSegmentation
@@ -121,6 +123,10 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
                    "Lidar objects for fusion: grid (rigid clusters) or segmentation (the scan's "
                    "segments)")
       ->check(CLI::IsMember({"grid", "segmentation"}));
+  command
+      ->add_option("--stereo-class", choices.stereo_class,
+                   "The camera's classes as evidence for the grid's class layer: on or off")
+      ->check(CLI::IsMember({"on", "off"}));
 }
 
 int Run(const std::string& scenario_path, std::string out_dir, int threads,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
+#include "lookout/eval/grid_class_metrics.h"
 #include "lookout/eval/grid_metrics.h"
 #include "lookout/sim/shapes.h"
 #include "lookout/sim/truth.h"
@@ -41,6 +42,7 @@ class GridScorer {
   eval::FalseDynamicAccumulator false_dynamic_;
   eval::OccupancyBrierAccumulator brier_;
   eval::OccludedRetentionAccumulator retention_;
+  eval::ClassAccuracyAccumulator class_accuracy_;
   eval::GridBelief belief_;
 };
 

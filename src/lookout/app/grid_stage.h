@@ -5,7 +5,10 @@
 // each lidar scan runs
 // one cycle: scroll the window to the ego, compute the inverse sensor model, update the filter
 // (docs/extended-grid.md steps 1-8), and take the rigid clusters of dynamic cells out of the
-// grid as lidar objects (grid/grid_objects.h).
+// grid as lidar objects (grid/grid_objects.h). The newest stereo frame not yet used, when
+// there is one within max_stereo_age_s of the scan, gives the cycle's class step the camera's
+// classes (app/stereo_class_evidence.h): one frame per cycle, since the camera's reports of one
+// tracked object in frames 50 ms apart are not independent evidence.
 //
 // Why the objects come out of this stage rather than a stage of their own: they are a reading
 // of the grid's state right after its cycle, in the vehicle frame at the scan's ego pose, and
@@ -17,6 +20,7 @@
 #include <vector>
 
 #include "lookout/app/stage.h"
+#include "lookout/app/stereo_class_evidence.h"
 #include "lookout/core/dead_reckoning.h"
 #include "lookout/grid/extended_grid.h"
 #include "lookout/grid/grid_objects.h"
@@ -33,9 +37,11 @@ class GridStage : public Stage {
   explicit GridStage(const grid::GridOptions& grid_options = {},
                      const grid::FilterOptions& filter_options = {},
                      const grid::GridObjectOptions& object_options = {},
-                     const EgoPoseSource* pose_source = nullptr);
+                     const EgoPoseSource* pose_source = nullptr,
+                     const StereoClassEvidenceOptions& stereo_class = {});
 
   void OnOdometry(const EgoOdometry& odometry) override;
+  void OnStereo(const StereoFrame& frame) override;
   void OnLidar(const LidarScan& scan) override;
 
   const grid::ExtendedGrid& grid() const { return grid_; }
@@ -54,6 +60,18 @@ class GridStage : public Stage {
   const std::vector<double>& objects_ms() const { return objects_ms_; }
   // Scans that could not be used: no ego pose for their time (odometry missing or stopped).
   std::int64_t skipped_scans() const { return skipped_scans_; }
+  // The camera's class evidence: stereo frames given to a cycle, the regions they made, and
+  // the stereo objects dropped as unusable (stereo/stereo_validation.h).
+  struct StereoClassStats {
+    std::int64_t frames_used = 0;
+    std::int64_t regions = 0;
+    std::int64_t objects_dropped = 0;
+  };
+  const StereoClassStats& stereo_class_stats() const { return stereo_class_stats_; }
+  // The regions given to the last cycle (odometry frame), for tests and display.
+  const std::vector<grid::StereoClassRegion>& last_stereo_regions() const {
+    return last_stereo_regions_;
+  }
 
  private:
   grid::GridOptions options_;
@@ -68,6 +86,13 @@ class GridStage : public Stage {
   std::optional<LidarObjectFrame> last_objects_;
   std::vector<double> objects_ms_;
   std::int64_t skipped_scans_ = 0;
+  StereoClassEvidenceOptions stereo_class_options_;
+  std::optional<StereoFrame> pending_stereo_;  // the newest frame no cycle has used
+  StereoClassStats stereo_class_stats_;
+  std::vector<grid::StereoClassRegion> last_stereo_regions_;
+
+  // The camera's regions for the scan at `scan` (empty without a usable frame).
+  std::vector<grid::StereoClassRegion> TakeStereoRegions(const LidarScan& scan);
 };
 
 }  // namespace lookout::app

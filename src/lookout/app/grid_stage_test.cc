@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
 #include "lookout/io/scenario_loader.h"
 #include "lookout/sim/simulator.h"
 
@@ -81,6 +86,122 @@ TEST(GridStageTest, EachCycleGivesTheObjectsOfItsScanInTheVehicleFrame) {
     }
   }
   EXPECT_EQ(stage.objects_ms().size(), log.lidar.size());
+}
+
+// A standing ego before a small object 10 m ahead of the lidar: `cycles` scans at 12.5 Hz, each
+// after a stereo frame 30 ms older (when `stereo` holds any object) and the odometry up to it.
+// Returns the stage after the last cycle.
+void RunStandingScene(GridStage& stage, const std::vector<StereoObject>& stereo, int cycles) {
+  const Pose2 lidar_mount(1.0, 0.0, 0.0);
+  TimeNs odometry_stamp = 0;
+  for (int k = 0; k < cycles; ++k) {
+    const TimeNs scan_stamp = 80'000'000LL * (k + 1);
+    while (odometry_stamp <= scan_stamp) {
+      stage.OnOdometry(EgoOdometry{odometry_stamp, 0.0, 0.0});
+      odometry_stamp += 10'000'000;
+    }
+    StereoFrame frame;
+    frame.stamp = scan_stamp - 30'000'000;
+    frame.mount = Pose2(1.5, 0.2, 0.1);  // the camera frame in the vehicle frame
+    frame.objects = stereo;
+    stage.OnStereo(frame);
+    LidarScan scan;
+    scan.stamp = scan_stamp;
+    scan.mount = lidar_mount;
+    scan.angle_min_rad = -0.5;
+    scan.angle_increment_rad = 0.005;
+    scan.max_range_m = 50.0;
+    scan.ranges_m.assign(201, std::numeric_limits<float>::infinity());
+    // Beams within +-0.03 rad of straight ahead hit the object's near side 10 m out.
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      if (std::abs(scan.BeamAngle(i)) <= 0.03) scan.ranges_m[i] = 10.0f;
+    }
+    stage.OnLidar(scan);
+  }
+}
+
+// The pedestrian probability of the grid's occupied cells within 0.3 m of `point_m` (odometry
+// frame), averaged; and how many there are.
+std::pair<double, int> PedestrianProbabilityAround(const GridStage& stage,
+                                                   const Eigen::Vector2d& point_m) {
+  const grid::ExtendedGrid& g = stage.grid();
+  const auto& pmf = g.layers().Values(g.ids().class_pmf[static_cast<std::size_t>(
+      grid::GridClass::kPedestrian)]);
+  const auto& occupancy = g.layers().Values(g.ids().occupancy);
+  double sum = 0.0;
+  int n = 0;
+  const grid::ScrollingGridGeometry& geometry = g.geometry();
+  const CellIndex centre = geometry.GlobalCellAt(point_m);
+  for (int dy = -3; dy <= 3; ++dy) {
+    for (int dx = -3; dx <= 3; ++dx) {
+      const CellIndex c{centre.ix + dx, centre.iy + dy};
+      if (!geometry.Contains(c) || (geometry.CellCenterM(c) - point_m).norm() > 0.3) continue;
+      const std::size_t i = geometry.StorageIndex(c);
+      if (occupancy[i] < 0.6f) continue;
+      sum += static_cast<double>(pmf[i]);
+      ++n;
+    }
+  }
+  return {n > 0 ? sum / n : 0.0, n};
+}
+
+TEST(GridStageTest, AStereoPedestrianRaisesThePedestrianProbabilityOfTheCellsItCovers) {
+  // The object's hits lie 11 m ahead of the vehicle (lidar at x = 1 m, range 10 m). The camera
+  // (at (1.5, 0.2), turned 0.1 rad) reports a pedestrian whose footprint covers them: its centre
+  // in the camera frame is the vehicle frame's (11.2, 0) brought into the camera's axes.
+  const Pose2 camera_mount(1.5, 0.2, 0.1);
+  StereoObject pedestrian;
+  pedestrian.id = 7;
+  pedestrian.object_class = ObjectClass::kPedestrian;
+  pedestrian.center_m = camera_mount.Inverse() * Eigen::Vector2d(11.2, 0.0);
+  pedestrian.length_m = 0.8;
+  pedestrian.width_m = 0.8;
+  pedestrian.center_covariance = 0.01 * Eigen::Matrix2d::Identity();
+  pedestrian.yaw_variance = 0.0025;
+  pedestrian.speed_variance = 0.09;
+  pedestrian.history = 5;
+  // The same object reported 4 m to the side: it covers none of the hits.
+  StereoObject aside = pedestrian;
+  aside.center_m = camera_mount.Inverse() * Eigen::Vector2d(11.2, 4.0);
+
+  GridStage with_camera, elsewhere, without_camera;
+  RunStandingScene(with_camera, {pedestrian}, 12);
+  RunStandingScene(elsewhere, {aside}, 12);
+  RunStandingScene(without_camera, {}, 12);
+  // The ego stands at the odometry frame's origin: the hits are at (11, 0) there.
+  const Eigen::Vector2d hits(11.0, 0.0);
+  const auto [p_with, n_with] = PedestrianProbabilityAround(with_camera, hits);
+  const auto [p_aside, n_aside] = PedestrianProbabilityAround(elsewhere, hits);
+  const auto [p_without, n_without] = PedestrianProbabilityAround(without_camera, hits);
+  ASSERT_GT(n_without, 0) << "the scene's hits must make occupied cells";
+  EXPECT_EQ(n_with, n_without);
+  EXPECT_EQ(with_camera.stereo_class_stats().frames_used, 12);
+  EXPECT_EQ(with_camera.stereo_class_stats().regions, 12);
+  EXPECT_EQ(with_camera.last_stereo_regions().size(), 1u);
+  // The grid's own cues (a small cluster that does not move) already lean to pedestrian; the
+  // camera's reports (likelihood ratio 45 against each other class, tempered by the
+  // footprint's share of the grown region) make it near certain.
+  EXPECT_GT(p_with, 0.9) << "without the camera: " << p_without;
+  EXPECT_GT(p_with, p_without + 0.2);
+  // A report elsewhere changes nothing here.
+  EXPECT_NEAR(p_aside, p_without, 1e-6);
+}
+
+TEST(GridStageTest, UnknownAndUnusableStereoObjectsGiveNoEvidence) {
+  StereoObject unknown;
+  unknown.object_class = ObjectClass::kUnknown;
+  unknown.center_m = Eigen::Vector2d(10.0, 0.0);
+  unknown.length_m = unknown.width_m = 0.8;
+  unknown.center_covariance = 0.01 * Eigen::Matrix2d::Identity();
+  unknown.speed_variance = 0.09;
+  StereoObject broken = unknown;
+  broken.object_class = ObjectClass::kPedestrian;
+  broken.center_covariance(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  GridStage stage;
+  RunStandingScene(stage, {unknown, broken}, 3);
+  EXPECT_EQ(stage.stereo_class_stats().frames_used, 3);
+  EXPECT_EQ(stage.stereo_class_stats().regions, 0);
+  EXPECT_EQ(stage.stereo_class_stats().objects_dropped, 3);
 }
 
 }  // namespace

@@ -32,7 +32,8 @@ Pipeline::Pipeline(const PipelineOptions& options) : object_source_(options.lida
                                       ? &lidar_chain_->localisation()
                                       : nullptr;
     auto grid = std::make_unique<GridStage>(grid::GridOptions{}, grid::FilterOptions{},
-                                            options.grid_objects, source);
+                                            options.grid_objects, source,
+                                            options.stereo_class);
     grid_ = grid.get();
     stages_.push_back(std::move(grid));
   }

@@ -37,6 +37,9 @@ struct PipelineOptions {
   bool grid = true;  // the extended grid (docs/extended-grid.md), with its objects
   // How the grid's rigid clusters become lidar objects (grid/grid_objects.h).
   grid::GridObjectOptions grid_objects;
+  // The camera's classes as evidence for the grid's class layer (app/stereo_class_evidence.h);
+  // stereo_class.enabled = false leaves the class layer to the grid's own cues.
+  StereoClassEvidenceOptions stereo_class;
   // The lidar chain (docs/lidar-chain.md): localisation, moving and static hits,
   // segmentation. Runs before the grid on every scan.
   bool lidar_chain = true;

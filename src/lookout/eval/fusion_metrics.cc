@@ -36,6 +36,40 @@ std::vector<TrueObject> TrueObjectsInVehicleFrame(const sim::TruthFrame& frame) 
   return objects;
 }
 
+std::vector<Vector2d> TrueFrontPoints(std::span<const TrueObject> truth,
+                                      const Vector2d& viewpoint_m) {
+  std::vector<Vector2d> points;
+  points.reserve(truth.size());
+  for (const TrueObject& t : truth) {
+    const auto front = stereo::FrontSegmentFacing(t.footprint, viewpoint_m);
+    points.push_back(front ? front->midpoint_m
+                           : Vector2d::Constant(std::numeric_limits<double>::infinity()));
+  }
+  return points;
+}
+
+std::vector<int> MatchToTruth(std::span<const Vector2d> points,
+                              std::span<const Vector2d> true_points, double radius_m) {
+  std::vector<int> match(points.size(), -1);
+  if (points.empty() || true_points.empty()) return match;
+  const double radius_squared = radius_m * radius_m;
+  Eigen::MatrixXd cost(static_cast<Eigen::Index>(points.size()),
+                       static_cast<Eigen::Index>(true_points.size()));
+  for (Eigen::Index i = 0; i < cost.rows(); ++i) {
+    for (Eigen::Index j = 0; j < cost.cols(); ++j) {
+      const double d2 = (points[static_cast<std::size_t>(i)] -
+                         true_points[static_cast<std::size_t>(j)])
+                            .squaredNorm();
+      cost(i, j) = d2 <= radius_squared ? d2 : assignment::kForbidden;
+    }
+  }
+  const assignment::Assignment a = assignment::SolveLinearAssignment(cost);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (a.column_of_row[i] != assignment::kUnassigned) match[i] = a.column_of_row[i];
+  }
+  return match;
+}
+
 void FusionMetricOptions::Validate() const {
   if (!(match_radius_m > 0.0)) {
     throw std::invalid_argument("FusionMetricOptions.match_radius_m: must be > 0");
@@ -56,8 +90,8 @@ void FusionMetricsAccumulator::AddFrame(const fusion::FusedObjectFrame& fused,
                                         std::span<const TrueObject> truth) {
   struct Candidate {
     const fusion::FusedObject* fused;
-    Vector2d lidar_point;
-    Vector2d stereo_point;
+    const LidarObject* lidar;
+    const stereo::StereoPoint* stereo;
   };
   std::vector<Candidate> candidates;
   for (const fusion::FusedObject& f : fused.objects) {
@@ -71,39 +105,28 @@ void FusionMetricsAccumulator::AddFrame(const fusion::FusedObjectFrame& fused,
       if (o.id == *f.stereo_id) s = &o;
     }
     if (l == nullptr || s == nullptr) continue;  // not the sources given: not scored
-    candidates.push_back({&f, l->point_m, s->point.point_m});
+    candidates.push_back({&f, l, s});
   }
-  std::vector<Vector2d> true_points;
-  for (const TrueObject& t : truth) {
-    const auto front = stereo::FrontSegmentFacing(t.footprint, fused.mount.translation);
-    // An actor around the lidar cannot be scored (and cannot happen outside a collision).
-    true_points.push_back(front ? front->midpoint_m
-                                : Vector2d::Constant(std::numeric_limits<double>::infinity()));
-  }
-  if (candidates.empty() || true_points.empty()) return;
-
-  const double radius_squared = options_.match_radius_m * options_.match_radius_m;
-  Eigen::MatrixXd cost(static_cast<Eigen::Index>(candidates.size()),
-                       static_cast<Eigen::Index>(true_points.size()));
-  for (Eigen::Index i = 0; i < cost.rows(); ++i) {
-    for (Eigen::Index j = 0; j < cost.cols(); ++j) {
-      const double d2 = (candidates[static_cast<std::size_t>(i)].fused->point_m -
-                         true_points[static_cast<std::size_t>(j)])
-                            .squaredNorm();
-      cost(i, j) = d2 <= radius_squared ? d2 : assignment::kForbidden;
-    }
-  }
-  const assignment::Assignment match = assignment::SolveLinearAssignment(cost);
+  if (candidates.empty() || truth.empty()) return;
+  const std::vector<Vector2d> true_points = TrueFrontPoints(truth, fused.mount.translation);
+  std::vector<Vector2d> fused_points;
+  for (const Candidate& c : candidates) fused_points.push_back(c.fused->point_m);
+  const std::vector<int> match = MatchToTruth(fused_points, true_points, options_.match_radius_m);
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const int j = match.column_of_row[i];
-    if (j == assignment::kUnassigned) continue;
+    const int j = match[i];
+    if (j < 0) continue;
     const Vector2d& truth_point = true_points[static_cast<std::size_t>(j)];
     const Candidate& c = candidates[i];
     const Vector2d error = c.fused->point_m - truth_point;
     fused_squared_ += error.squaredNorm();
-    lidar_squared_ += (c.lidar_point - truth_point).squaredNorm();
-    stereo_squared_ += (c.stereo_point - truth_point).squaredNorm();
+    const Vector2d lidar_error = c.lidar->point_m - truth_point;
+    const Vector2d stereo_error = c.stereo->point.point_m - truth_point;
+    lidar_squared_ += lidar_error.squaredNorm();
+    stereo_squared_ += stereo_error.squaredNorm();
     nees_sum_ += error.dot(c.fused->point_covariance.inverse() * error);
+    lidar_nees_sum_ += lidar_error.dot(c.lidar->point_covariance.inverse() * lidar_error);
+    stereo_nees_sum_ +=
+        stereo_error.dot(c.stereo->point.covariance.inverse() * stereo_error);
     ++count_;
   }
 }
@@ -146,6 +169,8 @@ std::map<std::string, double> FusionMetricsAccumulator::Values() const {
   values["fusion.lidar_only_rmse_m"] = *LidarOnlyRmse();
   values["fusion.stereo_only_rmse_m"] = *StereoOnlyRmse();
   values["fusion.nees_mean"] = *MeanNees();
+  values["fusion.lidar_nees_mean"] = lidar_nees_sum_ / static_cast<double>(count_);
+  values["fusion.stereo_nees_mean"] = stereo_nees_sum_ / static_cast<double>(count_);
   const NeesBand band = *MeanNeesBand();
   values["fusion.nees_band_low"] = band.low;
   values["fusion.nees_band_high"] = band.high;

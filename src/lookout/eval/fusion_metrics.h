@@ -47,6 +47,18 @@ struct TrueObject {
 // radius r) becomes the 2r square along its heading, as the simulated camera reports it.
 std::vector<TrueObject> TrueObjectsInVehicleFrame(const sim::TruthFrame& frame);
 
+// Each object's point: the middle of its footprint's side facing `viewpoint_m` (the lidar's
+// origin), as both sensors define it; +infinity for an actor around the viewpoint (no side
+// faces it: it cannot be scored).
+std::vector<Eigen::Vector2d> TrueFrontPoints(std::span<const TrueObject> truth,
+                                             const Eigen::Vector2d& viewpoint_m);
+
+// One-to-one matching of `points` to `true_points` by least total squared distance, pairs
+// further apart than radius_m forbidden (an optimal assignment): for each point the index of
+// its true point, or -1.
+std::vector<int> MatchToTruth(std::span<const Eigen::Vector2d> points,
+                              std::span<const Eigen::Vector2d> true_points, double radius_m);
+
 struct FusionMetricOptions {
   double match_radius_m = 2.0;  // the tracking metrics' matching distance (cli-contract.md)
   double nees_band_probability = 0.95;
@@ -79,7 +91,9 @@ class FusionMetricsAccumulator {
 
   // fusion.position_rmse_m, fusion.lidar_only_rmse_m, fusion.stereo_only_rmse_m,
   // fusion.nees_mean, fusion.nees_band_low, fusion.nees_band_high, fusion.matched_objects;
-  // only the keys that have a value.
+  // and, for the diagnosis of the fused NEES, fusion.lidar_nees_mean and
+  // fusion.stereo_nees_mean: each source's own NEES on the same objects (the same band holds
+  // for each when its covariance is honest). Only the keys that have a value.
   std::map<std::string, double> Values() const;
 
  private:
@@ -89,6 +103,8 @@ class FusionMetricsAccumulator {
   double lidar_squared_ = 0.0;
   double stereo_squared_ = 0.0;
   double nees_sum_ = 0.0;
+  double lidar_nees_sum_ = 0.0;
+  double stereo_nees_sum_ = 0.0;
 };
 
 }  // namespace lookout::eval
