@@ -70,29 +70,46 @@ bool LocalMap::RecentreOn(const Eigen::Vector2d& p) {
   const CellIndex old_origin = window_origin_;
   const CellIndex new_origin{c.ix - n_ / 2, c.iy - n_ / 2};
   window_origin_ = new_origin;
-  auto in_old = [&](int v, int o) { return v >= o && v < o + n_; };
+  // The kept cells, in both windows: [keep_lo, keep_hi) per axis, empty when the move is a
+  // whole window or more.
+  const CellIndex keep_lo{std::max(old_origin.ix, new_origin.ix),
+                          std::max(old_origin.iy, new_origin.iy)};
+  const CellIndex keep_hi{std::min(old_origin.ix, new_origin.ix) + n_,
+                          std::min(old_origin.iy, new_origin.iy) + n_};
+  const bool kept_any = keep_lo.ix < keep_hi.ix && keep_lo.iy < keep_hi.iy;
   // The cells that enter share their slots with the cells that leave: resetting the entering
-  // cells forgets the leaving ones.
+  // cells forgets the leaving ones. Only they are visited (a strip per axis).
   for (int gy = new_origin.iy; gy < new_origin.iy + n_; ++gy) {
-    const bool row_old = in_old(gy, old_origin.iy);
+    const bool row_kept = kept_any && gy >= keep_lo.iy && gy < keep_hi.iy;
     for (int gx = new_origin.ix; gx < new_origin.ix + n_; ++gx) {
-      if (!row_old || !in_old(gx, old_origin.ix)) ResetCell({gx, gy});
+      if (row_kept && gx == keep_lo.ix) {
+        gx = keep_hi.ix - 1;  // skip the kept run of this row
+        continue;
+      }
+      ResetCell({gx, gy});
     }
   }
-  // Cells that stayed within field reach of the forgotten ones may have measured their
-  // distance to them: search those again.
-  const int reach = static_cast<int>(std::ceil(options_.field_max_distance_m /
-                                               options_.cell_size_m));
-  for (int gy = new_origin.iy; gy < new_origin.iy + n_; ++gy) {
-    if (!in_old(gy, old_origin.iy)) continue;
-    for (int gx = new_origin.ix; gx < new_origin.ix + n_; ++gx) {
-      if (!in_old(gx, old_origin.ix)) continue;
-      const bool near_forgotten =
-          !in_old(gx - reach, old_origin.ix) || !in_old(gx + reach, old_origin.ix) ||
-          !in_old(gy - reach, old_origin.iy) || !in_old(gy + reach, old_origin.iy);
-      const bool near_new_edge = gx - reach < new_origin.ix || gx + reach >= new_origin.ix + n_ ||
-                                 gy - reach < new_origin.iy || gy + reach >= new_origin.iy + n_;
-      if (near_forgotten || near_new_edge) distance_[Slot({gx, gy})] = SearchDistance({gx, gy});
+  // Only the kept cells within field reach of the kept rectangle's border can be affected:
+  // an occupied one lowers the entering cells around it (reset to the field's maximum); any
+  // other may have measured its distance to a forgotten cell and is searched again, unless
+  // it is at the maximum already (forgetting cells cannot lower a distance).
+  if (kept_any) {
+    const int reach = static_cast<int>(std::ceil(options_.field_max_distance_m /
+                                                 options_.cell_size_m));
+    for (int gy = keep_lo.iy; gy < keep_hi.iy; ++gy) {
+      const bool row_near = gy - reach < keep_lo.iy || gy + reach >= keep_hi.iy;
+      for (int gx = keep_lo.ix; gx < keep_hi.ix; ++gx) {
+        if (!row_near && gx - reach >= keep_lo.ix && gx + reach < keep_hi.ix) {
+          gx = std::max(gx, keep_hi.ix - reach - 1);  // the row's middle is out of reach
+          continue;
+        }
+        float& d = distance_[Slot({gx, gy})];
+        if (log_odds_[Slot({gx, gy})] > options_.occupied_log_odds) {
+          LowerFieldAround({gx, gy});  // the entering cells within its reach
+        } else if (d < max_distance_) {
+          d = SearchDistance({gx, gy});
+        }
+      }
     }
   }
   if (touched_any_) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lookout/core/pose2.h"
@@ -18,13 +19,18 @@ MapOptions SmallMap() {
   return o;
 }
 
-// The slow literal reference: distance to the nearest occupied cell by scanning the window.
+// The slow literal reference: distance to the nearest occupied cell of the window by
+// scanning the cells around c.
 float BruteForceDistance(const LocalMap& map, const CellIndex& c) {
   const MapOptions& o = map.options();
   double best = o.field_max_distance_m;
+  // Cells further than the field's reach cannot count: only the square around c is scanned.
+  const int reach = static_cast<int>(std::ceil(o.field_max_distance_m / o.cell_size_m));
   const CellIndex origin = map.WindowOrigin();
-  for (int y = origin.iy; y < origin.iy + o.window_cells; ++y) {
-    for (int x = origin.ix; x < origin.ix + o.window_cells; ++x) {
+  for (int y = std::max(origin.iy, c.iy - reach);
+       y < std::min(origin.iy + o.window_cells, c.iy + reach + 1); ++y) {
+    for (int x = std::max(origin.ix, c.ix - reach);
+         x < std::min(origin.ix + o.window_cells, c.ix + reach + 1); ++x) {
       if (!map.Occupied({x, y})) continue;
       const double d = o.cell_size_m * std::hypot(x - c.ix, y - c.iy);
       if (d <= o.field_max_distance_m) best = std::min(best, d);
@@ -37,8 +43,8 @@ void ExpectFieldExact(const LocalMap& map, const std::string& context) {
   const CellIndex origin = map.WindowOrigin();
   const int n = map.options().window_cells;
   int wrong = 0;
-  for (int y = origin.iy; y < origin.iy + n; y += 3) {
-    for (int x = origin.ix; x < origin.ix + n; x += 3) {
+  for (int y = origin.iy; y < origin.iy + n; ++y) {
+    for (int x = origin.ix; x < origin.ix + n; ++x) {
       const float expected = BruteForceDistance(map, {x, y});
       if (std::abs(map.FieldDistance({x, y}) - expected) > 1e-5f && ++wrong < 5) {
         ADD_FAILURE() << context << ": cell (" << x << ", " << y << ") field "
@@ -174,6 +180,40 @@ TEST(LocalMap, MovingWindowForgetsWhatLeavesAndKeepsTheFieldExact) {
   const MapRaster raster = map.Raster();
   EXPECT_GT(raster.geometry.width, 0);
   EXPECT_EQ(raster.log_odds.size(), static_cast<std::size_t>(raster.geometry.CellCount()));
+}
+
+// RecentreOn visits only the strips that enter and the kept cells near the kept region's
+// border: checked against the brute-force field over moves along both axes, both signs, and
+// a jump of more than a window (everything forgotten).
+TEST(LocalMap, RecentringAlongEveryAxisKeepsTheFieldExact) {
+  const MapOptions o = SmallMap();  // 12.8 m window, recentred beyond 3.2 m
+  LocalMap map(o);
+  const std::uint64_t seed = 777;
+  Rng rng(seed);
+  const std::vector<Eigen::Vector2d> path = {{0.0, 0.0},  {4.0, 0.5},   {4.5, 5.0},
+                                             {-1.0, 2.0}, {-1.5, -3.0}, {30.0, -30.0}};
+  int moves = 0;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    if (map.RecentreOn(path[k])) ++moves;
+    const std::string context = "seed 777 stop " + std::to_string(k);
+    ExpectFieldExact(map, context + " after recentring");
+    for (int scan = 0; scan < 5; ++scan) {
+      std::vector<Eigen::Vector2d> hits;
+      for (int i = 0; i < 40; ++i) {
+        const double a = rng.Uniform(-kPi, kPi);
+        const double r = rng.Uniform(0.5, 5.0);
+        hits.emplace_back(path[k] + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+      }
+      map.InsertScan(path[k], hits, {});
+    }
+    ExpectFieldExact(map, context + " after mapping");
+  }
+  EXPECT_EQ(moves, 5);
+  // After the jump nothing of the earlier stops is left.
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({30.0 - 5.5, -30.0})), 0.0f);
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(4.0, 0.5), Eigen::Vector2d(-1.5, -3.0)}) {
+    EXPECT_FALSE(map.InWindow(map.CellOf(p)));
+  }
 }
 
 }  // namespace
