@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "lookout/lidar/dynamic_segments.h"
+
 namespace lookout::app {
 namespace {
 
@@ -53,6 +55,10 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
       lidar::ClusterScan(scan, options_.segmentation, options_.hits.min_range_m);
   last_objects_ = lidar::DescribeClusters(scan, clusters, hits_.beam, state->pose,
                                           options_.segmentation);
+  // The map takes each return's own class: a propagated class never keeps a return out of
+  // the map, so one false dynamic return cannot unmap a wall and feed on itself.
+  point_classes_ = hits_.beam;
+  lidar::PropagateDynamicSegments(scan, clusters, options_.dynamic_segments, hits_);
   const Clock::time_point segmented = Clock::now();
   std::vector<bool> unmapped;
   if (options_.map_static_only && options_.unmap_dynamic_segments) {
@@ -77,7 +83,7 @@ void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& un
   hits.reserve(scan.ranges_m.size());
   const Eigen::Vector2d origin = scan.mount.translation;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    const lidar::HitClass k = hits_.beam[i];
+    const lidar::HitClass k = point_classes_[i];
     if (k == lidar::HitClass::kNoReturn) continue;
     const Eigen::Vector2d p = lidar::ReturnPoint(scan, i);
     const bool clears_only = options_.map_static_only &&

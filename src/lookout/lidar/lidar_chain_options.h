@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "lookout/lidar/dynamic_segments.h"
 #include "lookout/lidar/hit_classification.h"
 #include "lookout/lidar/scan_segmentation.h"
 #include "lookout/lidar/slam_options.h"
@@ -22,6 +23,7 @@ struct LidarChainOptions {
   SlamOptions localiser = VehicleLocaliserOptions();
   HitClassificationOptions hits;
   SegmentationOptions segmentation;
+  DynamicSegmentOptions dynamic_segments;
   // Moving actors must not enter the map of the static world: returns classified dynamic only
   // clear the space in front of them (their rays), ending short of the return by
   // dynamic_ray_margin_m; static and unknown returns are mapped as hits. False maps every
