@@ -213,6 +213,7 @@ struct ReplayCommandOptions {
   std::string json_path;
   io::ReplayLogOptions topics;
   int threads = DefaultThreads();
+  PipelineOptions pipeline;
 };
 
 json ReplayJson(const io::ReplayLog& log, const eval::ScenarioMetrics& metrics) {
@@ -256,6 +257,13 @@ void PrintReplaySummary(const io::ReplayLog& log, const ReplayResult& r,
         *n, log.people_frame, 100.0 * value("people.grid.dynamic_share").value_or(0.0),
         100.0 * value("people.grid.any_share").value_or(0.0));
   }
+  if (const auto n = value("people.segmentation.positions")) {
+    std::cout << fmt::format(
+        "people      {} annotated positions: {:.1f} % with a dynamic segment (lidar chain) within "
+        "0.5 m, {:.1f} % with any\n",
+        *n, 100.0 * value("people.segmentation.dynamic_share").value_or(0.0),
+        100.0 * value("people.segmentation.any_share").value_or(0.0));
+  }
   for (const auto& [prefix, name] : {std::pair{"people.tracking", "tracks"},
                                      std::pair{"people.tracking_baseline", "baseline"}}) {
     const auto mota = value(std::string(prefix) + ".mota");
@@ -297,7 +305,7 @@ int Replay(const ReplayCommandOptions& o) {
   for (const std::string& w : log.warnings) std::cerr << "lookout: warning: " << w << "\n";
   const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
 
-  Pipeline pipeline(PipelineOptions{});
+  Pipeline pipeline(o.pipeline);
   ReplayOptions options;
   options.threads = o.threads;
   options.recording_path = recording;
@@ -415,6 +423,8 @@ int RunCli(int argc, char** argv) {
                      "The ground-truth topic (leg_tracker/Person), when the log has several");
   replay->add_option("--threads", replay_options.threads,
                      "Worker threads (the output does not depend on it)");
+  PipelineChoices replay_choices;
+  AddPipelineChoices(replay, replay_choices);
 
   SlamCommandOptions slam_options;
   CLI::App* slam = cli.add_subcommand(
@@ -447,7 +457,10 @@ int RunCli(int argc, char** argv) {
     }
     if (bench->parsed()) return Bench(bench_json);
     if (slam->parsed()) return RunSlamCommand(slam_options);
-    if (replay->parsed()) return Replay(replay_options);
+    if (replay->parsed()) {
+      replay_options.pipeline = replay_choices.Options();
+      return Replay(replay_options);
+    }
   } catch (const InputError& e) {
     std::cerr << "lookout: " << e.what() << "\n";
     return 2;

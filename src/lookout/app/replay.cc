@@ -34,8 +34,12 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
   std::vector<const io::PeopleFrame*> people_at(log.lidar.size(), nullptr);
   for (const io::PeopleFrame& f : log.people) people_at[f.scan_index] = &f;
   std::size_t next_reference = 0;
-  std::optional<PeopleScorer> grid_people;
+  // Each source of lidar objects is scored from its own stage, whichever the pipeline fuses.
+  std::optional<PeopleScorer> grid_people, segmentation_people;
   if (!log.people.empty() && pipeline.grid()) grid_people.emplace("people.grid");
+  if (!log.people.empty() && pipeline.lidar_chain()) {
+    segmentation_people.emplace("people.segmentation");
+  }
   // Tracks are scored over the annotated span, every scan of it a frame (people_scoring.h).
   std::optional<PeopleTrackingScorer> people_tracks, people_baseline_tracks;
   const std::size_t first_annotated = log.people.empty() ? 0 : log.people.front().scan_index;
@@ -58,7 +62,17 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
     const io::PeopleFrame* people = people_at[cycle.index];
     if (people && recorder) recorder->Write(*people);
     const WallClock::time_point scoring_start = WallClock::now();
-    if (people && grid_people) grid_people->Observe(*people, scan.mount, cycle.objects);
+    // A stage that skipped this scan (no ego pose) holds an older frame: none for this scan.
+    const auto at_scan = [&](const std::optional<LidarObjectFrame>& frame) {
+      return frame && frame->stamp == scan.stamp ? &*frame : nullptr;
+    };
+    if (people && grid_people) {
+      grid_people->Observe(*people, scan.mount, at_scan(pipeline.grid()->last_objects()));
+    }
+    if (people && segmentation_people) {
+      segmentation_people->Observe(*people, scan.mount,
+                                   at_scan(pipeline.lidar_chain()->last_objects()));
+    }
     if (people_tracks && tracking && cycle.index >= first_annotated &&
         cycle.index <= last_annotated) {
       // A cycle the tracker did not run (no objects) shows no track.
@@ -103,6 +117,7 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
     m["replay.scans_without_pose"] = static_cast<double>(pipeline.grid()->skipped_scans());
   }
   if (grid_people) grid_people->Report(m);
+  if (segmentation_people) segmentation_people->Report(m);
   if (people_tracks) people_tracks->Report(m);
   if (people_baseline_tracks) people_baseline_tracks->Report(m);
   if (estimate.size() >= 2) {

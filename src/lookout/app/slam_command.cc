@@ -10,6 +10,7 @@
 
 #include "lookout/app/output_files.h"
 #include "lookout/core/input_error.h"
+#include "lookout/eval/relation_error.h"
 #include "lookout/eval/trajectory_error.h"
 #include "lookout/eval/trajectory_io.h"
 
@@ -28,22 +29,52 @@ lidar::SlamOptions CarmenSlamOptions() {
   return options;
 }
 
-eval::AbsoluteTrajectoryError ReferenceError(const io::CarmenLog& log,
-                                             const lidar::SlamResult& result) {
+namespace {
+
+// The estimate and the reference pose at each scan that has both.
+struct ScanPairs {
   std::vector<Pose2> estimate;
   std::vector<Pose2> reference;
+};
+
+ScanPairs PairsAtScans(const io::CarmenLog& log, const lidar::SlamResult& result) {
+  ScanPairs pairs;
   std::size_t scan = 0;
   for (const io::CarmenRecord& r : log.records) {
     if (!r.scan) continue;
     if (scan < result.scan_states.size() && r.reference_pose &&
         result.scan_states[scan].stamp == FromSeconds(r.t_s)) {
-      estimate.push_back(result.scan_states[scan].pose);
-      reference.push_back(*r.reference_pose);
+      pairs.estimate.push_back(result.scan_states[scan].pose);
+      pairs.reference.push_back(*r.reference_pose);
     }
     ++scan;
   }
-  if (estimate.size() < 2) return {};
-  return eval::AbsoluteErrorOfPairs(estimate, reference);
+  return pairs;
+}
+
+}  // namespace
+
+eval::AbsoluteTrajectoryError ReferenceError(const io::CarmenLog& log,
+                                             const lidar::SlamResult& result) {
+  const ScanPairs pairs = PairsAtScans(log, result);
+  if (pairs.estimate.size() < 2) return {};
+  return eval::AbsoluteErrorOfPairs(pairs.estimate, pairs.reference);
+}
+
+eval::RelationError ReferenceRelationError(const io::CarmenLog& log,
+                                           const lidar::SlamResult& result,
+                                           double min_travel_m) {
+  const ScanPairs pairs = PairsAtScans(log, result);
+  if (pairs.estimate.size() < 2) return {};
+  eval::Trajectory2 estimate;
+  eval::Trajectory2 reference;
+  for (std::size_t i = 0; i < pairs.estimate.size(); ++i) {
+    estimate.push_back({static_cast<double>(i), pairs.estimate[i]});
+    reference.push_back({static_cast<double>(i), pairs.reference[i]});
+  }
+  eval::RelationGeneratorOptions generator;
+  generator.min_travel_m = min_travel_m;
+  return eval::ComputeRelationError(estimate, eval::GenerateRelations(reference, generator));
 }
 
 io::Image8 MapImage(const lidar::MapRaster& map) {
@@ -118,6 +149,13 @@ int RunSlamCommand(const SlamCommandOptions& options) {
         "ate         {:.3f} m RMSE, heading {:.2f} deg RMSE, against the log's reference poses "
         "({} scans, rigid alignment)\n",
         ate.ate_rmse_m, RadToDeg(ate.heading_rmse_rad), ate.matched);
+  }
+  if (const eval::RelationError rel = ReferenceRelationError(log, result); rel.used > 0) {
+    std::cout << fmt::format(
+        "relations   {:.3f} +- {:.3f} m, {:.2f} +- {:.2f} deg (mean +- deviation over {} "
+        "relations of 10 m of reference path, Kuemmerle et al.)\n",
+        rel.translation_mean_m, rel.translation_std_m, RadToDeg(rel.rotation_mean_rad),
+        RadToDeg(rel.rotation_std_rad), rel.used);
   }
   if (!options.trajectory_path.empty()) {
     std::cout << fmt::format("trajectory  {}\n", options.trajectory_path);

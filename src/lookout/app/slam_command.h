@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "lookout/eval/relation_error.h"
 #include "lookout/eval/trajectory_error.h"
 #include "lookout/io/carmen_log.h"
 #include "lookout/io/png_writer.h"
@@ -38,6 +39,15 @@ std::vector<lidar::SlamRecord> SlamRecordsOf(const io::CarmenLog& log);
 // than two scans pair up.
 eval::AbsoluteTrajectoryError ReferenceError(const io::CarmenLog& log,
                                              const lidar::SlamResult& result);
+
+// The relation error of Kuemmerle et al. (eval/relation_error.h) of the estimate at each scan,
+// relations between each scan and the first scan at least `min_travel_m` further along the
+// reference path, as the dead-reckoning baseline of docs/carmen.md has them. Scans are paired
+// by their order: five of the Radish logs have no usable time base. `used` 0 when fewer than
+// two scans pair up.
+eval::RelationError ReferenceRelationError(const io::CarmenLog& log,
+                                           const lidar::SlamResult& result,
+                                           double min_travel_m = 10.0);
 
 // The map as a picture: white free, black occupied, grey unknown (gray level 255 (1 - p)),
 // north up, one pixel per cell.

@@ -42,5 +42,32 @@ TEST(SlamCommand, RecordsCarryNoReferencePose) {
   EXPECT_TRUE(records[1].scan.has_value());
 }
 
+TEST(SlamCommand, RelationErrorPairsTheScansByOrderOverTenMetres) {
+  // 21 scans 1 m apart along x on the reference, 1.1 m apart in the estimate. Each scan is
+  // related to the one 10 m further: 11 relations, each 1 m too long.
+  io::CarmenLog log;
+  lidar::SlamResult result;
+  log.records.resize(21);
+  for (int i = 0; i < 21; ++i) {
+    io::CarmenRecord& r = log.records[static_cast<std::size_t>(i)];
+    r.t_s = 0.0;  // no time base, as five Radish logs: pairing is by order
+    r.scan.emplace();
+    r.reference_pose = Pose2(static_cast<double>(i), 0.0, 0.0);
+    EgoState state;
+    state.stamp = FromSeconds(r.t_s);
+    state.pose = Pose2(1.1 * i, 0.0, 0.0);
+    result.scan_states.push_back(state);
+  }
+  const eval::RelationError error = ReferenceRelationError(log, result);
+  EXPECT_EQ(error.used, 11u);
+  EXPECT_NEAR(error.translation_mean_m, 1.0, 1e-9);
+  EXPECT_NEAR(error.translation_std_m, 0.0, 1e-9);
+  EXPECT_NEAR(error.rotation_mean_rad, 0.0, 1e-12);
+  // Over 5 m, the first scan 5 m further: 16 relations 0.5 m too long.
+  const eval::RelationError five = ReferenceRelationError(log, result, 5.0);
+  EXPECT_EQ(five.used, 16u);
+  EXPECT_NEAR(five.translation_mean_m, 0.5, 1e-9);
+}
+
 }  // namespace
 }  // namespace lookout::app
