@@ -1,5 +1,7 @@
 #include "lookout/app/pipeline.h"
 
+#include <cmath>
+
 #include "lookout/core/input_error.h"
 
 namespace lookout::app {
@@ -71,6 +73,7 @@ void Pipeline::OnOdometry(const EgoOdometry& odometry) {
 void Pipeline::OnStereo(const StereoFrame& frame) {
   for (const auto& stage : stages_) stage->OnStereo(frame);
   latest_stereo_ = frame;
+  stereo_received_ = true;
 }
 
 void Pipeline::OnLidar(const LidarScan& scan) {
@@ -80,9 +83,16 @@ void Pipeline::OnLidar(const LidarScan& scan) {
   const LidarObjectFrame* objects = lidar_objects();
   if (fusion_ && objects && objects->stamp == scan.stamp) {
     fused_ = fusion_->Fuse(*objects, latest_stereo_);
-    // Tracks in the odometry frame, then the risk they pose to the ego at this stamp.
+    // Tracks in the odometry frame, then the risk they pose to the ego at this stamp. The
+    // camera's silence counts against lidar-only objects only when its latest frame is recent
+    // enough for fusion (an empty frame too: the camera saw nothing), not when it has stopped.
     if (tracking_) {
-      tracking_->Step(*fused_);
+      std::optional<Pose2> camera;
+      if (stereo_received_ && std::abs(ToSeconds(scan.stamp - latest_stereo_.stamp)) <=
+                                  fusion_->options().max_stereo_age_s) {
+        camera = latest_stereo_.mount;
+      }
+      tracking_->Step(*fused_, camera);
       if (risk_ && tracking_->last_stamp() == fused_->stamp) {
         risk_->Step(fused_->stamp, fused_->ego_pose, tracking_->tracks());
       }

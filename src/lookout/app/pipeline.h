@@ -107,6 +107,7 @@ class Pipeline {
   LidarObjectSource object_source_ = LidarObjectSource::kGrid;
   std::optional<fusion::FusionEngine> fusion_;
   StereoFrame latest_stereo_;
+  bool stereo_received_ = false;
   std::optional<fusion::FusedObjectFrame> fused_;
   std::optional<TrackingStage> tracking_;
   std::optional<RiskStage> risk_;

@@ -1,11 +1,13 @@
 #include "lookout/app/tracking_stage.h"
 
+#include <Eigen/LU>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "lookout/core/chi_square.h"
 #include "lookout/core/input_error.h"
 
 namespace lookout::app {
@@ -48,12 +50,12 @@ ObjectClass MostLikelyClass(const fusion::FusedObject& object) {
   return kAllObjectClasses[ArgMax(object.class_pmf)];
 }
 
-std::vector<ObjectClass> CameraClassHistory::Update(const fusion::FusedObjectFrame& frame) {
-  std::vector<ObjectClass> out;
+std::vector<CameraHistory> CameraTrackHistory::Update(const fusion::FusedObjectFrame& frame) {
+  std::vector<CameraHistory> out;
   out.reserve(frame.objects.size());
   for (const fusion::FusedObject& o : frame.objects) {
     if (!o.stereo_id) {
-      out.push_back(MostLikelyClass(o));
+      out.push_back({MostLikelyClass(o), 0});
       continue;
     }
     Evidence& e = evidence_[*o.stereo_id];
@@ -63,7 +65,8 @@ std::vector<ObjectClass> CameraClassHistory::Update(const fusion::FusedObjectFra
       e.log_sum[c] += std::log(std::max(o.class_pmf[c], 1e-6));
     }
     e.last_seen = frame.stamp;
-    out.push_back(kAllObjectClasses[ArgMax(e.log_sum)]);
+    ++e.frames;
+    out.push_back({kAllObjectClasses[ArgMax(e.log_sum)], e.frames});
   }
   std::erase_if(evidence_, [&](const auto& entry) {
     return ToSeconds(frame.stamp - entry.second.last_seen) > forget_after_s_;
@@ -100,6 +103,23 @@ void DetectionOptions::Validate(const std::string& source) const {
     throw InputError(source, 0, "centre_offset_sigma_m", "must be >= 0");
   }
   positive(min_segment_m, "min_segment_m");
+  positive(static_speed_mps, "static_speed_mps");
+  if (!(moving_probability > 0.0 && moving_probability < 1.0)) {
+    throw InputError(source, 0, "moving_probability", "must be in (0, 1)");
+  }
+  if (!std::isfinite(camera_fov_rad) || camera_fov_rad <= 0.0 || camera_fov_rad >= 2.0 * kPi) {
+    throw InputError(source, 0, "camera_fov_rad", "must be in (0, 2 pi)");
+  }
+  positive(camera_max_depth_m, "camera_max_depth_m");
+  if (!std::isfinite(camera_view_margin_rad) || camera_view_margin_rad < 0.0) {
+    throw InputError(source, 0, "camera_view_margin_rad", "must be >= 0");
+  }
+  if (!std::isfinite(camera_view_margin_m) || camera_view_margin_m < 0.0) {
+    throw InputError(source, 0, "camera_view_margin_m", "must be >= 0");
+  }
+  if (!(camera_gate_probability > 0.0 && camera_gate_probability < 1.0)) {
+    throw InputError(source, 0, "camera_gate_probability", "must be in (0, 1)");
+  }
 }
 
 void TrackingStageOptions::Validate(const std::string& source) const {
@@ -108,16 +128,52 @@ void TrackingStageOptions::Validate(const std::string& source) const {
   detections.Validate(source + ": detections");
 }
 
+namespace {
+
+// Whether a camera object of `frame` lies within the gate of `o` (both at their seen sides).
+bool CameraObjectNear(const fusion::FusedObjectFrame& frame, const fusion::FusedObject& o,
+                      double gate) {
+  for (const fusion::FusedObject& c : frame.objects) {
+    if (!c.stereo_id) continue;
+    const Eigen::Vector2d d = c.point_m - o.point_m;
+    const Eigen::Matrix2d s = c.point_covariance + o.point_covariance;
+    if (!d.allFinite() || !s.allFinite() || s.determinant() <= 0.0) continue;
+    if (d.dot(s.inverse() * d) <= gate) return true;
+  }
+  return false;
+}
+
+bool InCameraView(const Pose2& camera_mount, const Eigen::Vector2d& vehicle_point,
+                  const DetectionOptions& o) {
+  const Eigen::Vector2d p = camera_mount.Inverse() * vehicle_point;
+  return p.x() > 0.0 && p.x() <= o.camera_max_depth_m - o.camera_view_margin_m &&
+         std::abs(std::atan2(p.y(), p.x())) <= 0.5 * o.camera_fov_rad - o.camera_view_margin_rad;
+}
+
+}  // namespace
+
+bool IsRoadUser(const tracking::Track& t, const DetectionOptions& options) {
+  if (t.existence_log_odds > 0.0) return true;
+  const Eigen::Vector2d v = t.Velocity();
+  if (v.norm() < options.static_speed_mps) return false;
+  const Eigen::Matrix2d pv = t.state.cov.block<2, 2>(2, 2);
+  if (!pv.allFinite() || pv.determinant() <= 0.0) return false;
+  return v.dot(pv.inverse() * v) > ChiSquareQuantile(options.moving_probability, 2.0);
+}
+
 std::vector<tracking::Detection> DetectionsFromFusedObjects(
     const fusion::FusedObjectFrame& frame, const DetectionOptions& options,
-    const std::vector<ObjectClass>& classes) {
+    const std::vector<CameraHistory>& history, const std::optional<Pose2>& camera_mount) {
   std::vector<tracking::Detection> out;
   out.reserve(frame.objects.size());
   const Eigen::Matrix2d r = frame.ego_pose.Rotation();
   const Eigen::Vector2d lidar = frame.mount.translation;
+  const double camera_gate = ChiSquareQuantile(options.camera_gate_probability, 2.0);
   for (std::size_t i = 0; i < frame.objects.size(); ++i) {
     const fusion::FusedObject& o = frame.objects[i];
-    const ObjectClass c = classes.size() == frame.objects.size() ? classes[i] : MostLikelyClass(o);
+    const bool with_history = history.size() == frame.objects.size();
+    const ObjectClass c = with_history ? history[i].object_class : MostLikelyClass(o);
+    const int camera_frames = with_history ? history[i].frames : (o.stereo_id ? 1 : 0);
     if (c == ObjectClass::kPole) continue;
     const bool lidar_only = !o.stereo_id.has_value();
     if (lidar_only && !o.dynamic && !options.keep_static_lidar_objects) continue;
@@ -141,6 +197,12 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
                        Eigen::Matrix2d::Identity();
     d.object_class = c;
     d.sensors = o.sensor_count;
+    if (o.stereo_id) {
+      if (camera_frames >= 2) d.camera = tracking::CameraEvidence::kSeen;
+    } else if (camera_mount && InCameraView(*camera_mount, centre, options) &&
+               !CameraObjectNear(frame, o, camera_gate)) {
+      d.camera = tracking::CameraEvidence::kUnseen;
+    }
     out.push_back(d);
   }
   return out;
@@ -162,8 +224,10 @@ void TrackingStage::Warn(std::string message) {
   if (warnings_.size() < kMaxWarnings) warnings_.push_back(std::move(message));
 }
 
-void TrackingStage::Step(const fusion::FusedObjectFrame& frame) {
-  detections_ = DetectionsFromFusedObjects(frame, options_.detections, classes_.Update(frame));
+void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
+                         const std::optional<Pose2>& camera_mount) {
+  detections_ = DetectionsFromFusedObjects(frame, options_.detections,
+                                           camera_history_.Update(frame), camera_mount);
   const Clock::time_point start = Clock::now();
   const bool accepted = tracker_->Step(frame.stamp, detections_);
   step_ms_.push_back(MsSince(start));
@@ -184,8 +248,14 @@ void TrackingStage::Step(const fusion::FusedObjectFrame& frame) {
     dropped_reported_ = tracker_->dropped_detections();
   }
   last_stamp_ = frame.stamp;
-  tracks_ = tracker_->ConfirmedTracks();
-  if (baseline_) baseline_tracks_ = baseline_->ConfirmedTracks();
+  const auto road_users = [&](std::vector<tracking::Track> tracks) {
+    std::erase_if(tracks, [&](const tracking::Track& t) {
+      return !IsRoadUser(t, options_.detections);
+    });
+    return tracks;
+  };
+  tracks_ = road_users(tracker_->ConfirmedTracks());
+  if (baseline_) baseline_tracks_ = road_users(baseline_->ConfirmedTracks());
 }
 
 }  // namespace lookout::app

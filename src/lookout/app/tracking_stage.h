@@ -24,6 +24,24 @@
 // Which objects become detections: every fused object but poles (street furniture, not road
 // users) and the lidar-only objects that the grid holds static (parked cars, buildings' corners:
 // the tracker follows road users; a static road user seen by the camera stays in).
+//
+// Which tracks are output (tracks(), the risk stage's input): the tracker's confirmed tracks
+// but those the camera has not spoken for (existence log odds <= 0: no camera object, or more
+// evidence against than for) that may be standing still: slower than static_speed_mps, or a
+// velocity within the chi-square gate of zero. The same rule as for detections (lidar-only
+// objects the grid holds static are static structure), on the track's motion over many scans,
+// which is surer than one cluster's cells. The grid's ghosts on walls, parked cars and building
+// corners, which it calls moving but which stay where they are, go; so does a lidar-only road
+// user until its track shows it moving (a few scans), or while it stands where the camera
+// cannot see it.
+//
+// What the camera says about each (tracking::CameraEvidence, for the track management's
+// existence odds against ghosts): seen, when the camera reported it; unseen, when it is a
+// lidar-only object whose centre lies inside the camera's field of view and depth (less a
+// margin for the estimate's error) and no camera object of the frame lies within its gate
+// (the camera saw something there that fusion did not pair: no evidence); none otherwise, and
+// for every object of a cycle whose fusion had no camera frame (a camera that stops says
+// nothing about the objects).
 
 #include <array>
 #include <cstdint>
@@ -33,6 +51,7 @@
 #include <string>
 #include <vector>
 
+#include "lookout/core/pose2.h"
 #include "lookout/fusion/fused_object.h"
 #include "lookout/tracking/gnn_tracker.h"
 #include "lookout/tracking/mht_tracker.h"
@@ -58,6 +77,19 @@ struct DetectionOptions {
   // Below this length the front segment gives no direction; the line of sight does.
   double min_segment_m = 0.2;
   bool keep_static_lidar_objects = false;
+  // The camera's field of view and depth (the seed vehicle's camera, docs/scenarios.md), and
+  // how far inside them a centre must be for the camera's silence to count.
+  double camera_fov_rad = 70.0 * kPi / 180.0;
+  double camera_max_depth_m = 35.0;
+  double camera_view_margin_rad = 3.0 * kPi / 180.0;
+  double camera_view_margin_m = 2.0;
+  // A camera object within this chi-square gate (2 dof) of a lidar-only object saw it.
+  double camera_gate_probability = 0.999;
+  // A track without the camera's support is a road user only when it moves: faster than
+  // this (the grid's and fusion's "dynamic" threshold), and its velocity significantly not
+  // zero (outside this chi-square gate of zero, 2 dof).
+  double static_speed_mps = 0.5;
+  double moving_probability = 0.99;
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "detection options") const;
@@ -66,26 +98,42 @@ struct DetectionOptions {
 // The most likely class of a fused object's pmf (the first of equals).
 ObjectClass MostLikelyClass(const fusion::FusedObject& object);
 
-// The tracker's detections from one fused frame, in the odometry frame. `classes`, when not
-// empty, gives each object's class (one per object), otherwise MostLikelyClass. Objects with a
-// non-finite field are passed on as they are: the tracker drops and counts them. Pure.
+// What the camera's own track says about one fused object (CameraTrackHistory).
+struct CameraHistory {
+  ObjectClass object_class = ObjectClass::kUnknown;  // the most likely over the camera's track
+  int frames = 0;  // frames of its camera track so far, this one included; 0: not seen
+};
+
+// The tracker's detections from one fused frame, in the odometry frame. `history`, when not
+// empty, gives each object's camera history (one per object); otherwise the class is
+// MostLikelyClass and a camera object counts as seen once. A camera object counts as the
+// camera's evidence for an object (CameraEvidence::kSeen) from its camera track's second frame
+// on: the camera's false objects are never tracked over frames. `camera_mount` (vehicle
+// frame): the camera whose frame is recent enough for this cycle, nullopt when there is none.
+// Objects with a non-finite field are passed on as they are: the tracker drops and counts
+// them. Pure.
 std::vector<tracking::Detection> DetectionsFromFusedObjects(
     const fusion::FusedObjectFrame& frame, const DetectionOptions& options,
-    const std::vector<ObjectClass>& classes = {});
+    const std::vector<CameraHistory>& history = {},
+    const std::optional<Pose2>& camera_mount = std::nullopt);
 
-// The camera's class evidence per camera track id: the sum of the log class probabilities of
-// its frames. Forgets an id not seen for `forget_after_s`.
-class CameraClassHistory {
+// Whether a confirmed track is output as a road user (above). Pure.
+bool IsRoadUser(const tracking::Track& track, const DetectionOptions& options);
+
+// The camera's evidence per camera track id: its frames, and the sum of the log class
+// probabilities of its frames. Forgets an id not seen for `forget_after_s`.
+class CameraTrackHistory {
  public:
-  explicit CameraClassHistory(double forget_after_s = 1.0) : forget_after_s_(forget_after_s) {}
-  // Each object's class after adding this frame's evidence: over the camera track's history
-  // when the camera saw it, MostLikelyClass otherwise.
-  std::vector<ObjectClass> Update(const fusion::FusedObjectFrame& frame);
+  explicit CameraTrackHistory(double forget_after_s = 1.0) : forget_after_s_(forget_after_s) {}
+  // Each object's history after adding this frame: the class over the camera track when the
+  // camera saw it, MostLikelyClass otherwise.
+  std::vector<CameraHistory> Update(const fusion::FusedObjectFrame& frame);
 
  private:
   struct Evidence {
     std::array<double, kAllObjectClasses.size()> log_sum{};
     TimeNs last_seen = 0;
+    int frames = 0;
   };
   double forget_after_s_;
   std::map<std::uint32_t, Evidence> evidence_;
@@ -106,9 +154,11 @@ class TrackingStage {
  public:
   explicit TrackingStage(const TrackingStageOptions& options = {});
 
-  // One cycle. A frame whose stamp is not after the previous one's is refused by the trackers:
-  // the tracks stay as they were and a warning is logged (warnings()).
-  void Step(const fusion::FusedObjectFrame& frame);
+  // One cycle. `camera_mount`: the camera whose frame the cycle's fusion used (nullopt: none).
+  // A frame whose stamp is not after the previous one's is refused by the trackers: the tracks
+  // stay as they were and a warning is logged (warnings()).
+  void Step(const fusion::FusedObjectFrame& frame,
+            const std::optional<Pose2>& camera_mount = std::nullopt);
 
   const tracking::Tracker& tracker() const { return *tracker_; }
   // The GNN beside the tracker, or nullptr when it does not run.
@@ -138,7 +188,7 @@ class TrackingStage {
   std::unique_ptr<tracking::Tracker> baseline_;
   std::vector<tracking::Track> tracks_, baseline_tracks_;
   std::vector<tracking::Detection> detections_;
-  CameraClassHistory classes_;
+  CameraTrackHistory camera_history_;
   std::optional<TimeNs> last_stamp_;
   std::vector<double> step_ms_, baseline_step_ms_;
   std::vector<std::string> warnings_;

@@ -98,24 +98,88 @@ TEST(DetectionsFromFusedObjectsTest, LeavesOutPolesAndStaticLidarOnlyObjects) {
   EXPECT_EQ(DetectionsFromFusedObjects(Frame(0, {pole, parked, standing}), keep).size(), 2u);
 }
 
+// What the camera says about each object: with a camera frame, a lidar-only object in its view
+// with no camera object near is unseen; one beside a camera object that fusion did not pair,
+// or outside the view (to the side, or beyond its depth), is no evidence; a camera object is
+// seen from its camera track's second frame on; without a camera frame nothing is evidence.
+TEST(DetectionsFromFusedObjectsTest, TheCameraSpeaksForAndAgainstObjects) {
+  const auto lidar_only = [](Eigen::Vector2d a, Eigen::Vector2d b) {
+    fusion::FusedObject o = Object(ObjectClass::kCar, a, b);
+    o.stereo_id.reset();
+    o.sensor_count = 1;
+    return o;
+  };
+  const fusion::FusedObject ghost = lidar_only({15.0, 4.0}, {15.0, 5.0});       // in view
+  const fusion::FusedObject beside = lidar_only({8.0, -12.0}, {8.0, -11.0});    // 55 deg off
+  const fusion::FusedObject far = lidar_only({40.0, 0.0}, {40.0, 1.0});         // beyond 35 m
+  const fusion::FusedObject unpaired = lidar_only({20.0, -3.0}, {20.0, -2.0});  // camera beside
+  fusion::FusedObject camera = Object(ObjectClass::kCar, {20.1, -2.9}, {20.1, -1.9});
+  camera.sensor_count = 1;
+  const fusion::FusedObjectFrame frame = Frame(0, {ghost, beside, far, unpaired, camera});
+  const Pose2 mount(0.8, 0.0, 0.0);
+  std::vector<CameraHistory> history(5);
+  history[4] = {ObjectClass::kCar, 2};
+  using tracking::CameraEvidence;
+  const auto d = DetectionsFromFusedObjects(frame, {}, history, mount);
+  ASSERT_EQ(d.size(), 5u);
+  EXPECT_EQ(d[0].camera, CameraEvidence::kUnseen);
+  EXPECT_EQ(d[1].camera, CameraEvidence::kNone);
+  EXPECT_EQ(d[2].camera, CameraEvidence::kNone);
+  EXPECT_EQ(d[3].camera, CameraEvidence::kNone);
+  EXPECT_EQ(d[4].camera, CameraEvidence::kSeen);
+  history[4].frames = 1;  // a camera object seen once may be one of its false objects
+  EXPECT_EQ(DetectionsFromFusedObjects(frame, {}, history, mount)[4].camera, CameraEvidence::kNone);
+  for (const auto& x : DetectionsFromFusedObjects(frame, {}, history, std::nullopt)) {
+    EXPECT_NE(x.camera, CameraEvidence::kUnseen) << "no camera frame, no silence";
+  }
+}
+
+tracking::Track TrackWith(Eigen::Vector2d velocity, double velocity_sigma, double log_odds) {
+  tracking::Track t;
+  t.status = tracking::TrackStatus::kConfirmed;
+  t.state.mean = Eigen::Vector4d(10.0, 0.0, velocity.x(), velocity.y());
+  t.state.cov = Eigen::Matrix4d::Identity() * 0.01;
+  t.state.cov.bottomRightCorner<2, 2>() *= velocity_sigma * velocity_sigma / 0.01;
+  t.existence_log_odds = log_odds;
+  return t;
+}
+
+// Tracks without the camera's support are road users only while they move, surely: the grid's
+// ghosts on static structure stand still.
+TEST(RoadUserTest, TracksWithoutTheCameraMustMove) {
+  const DetectionOptions o;
+  EXPECT_FALSE(IsRoadUser(TrackWith({0.2, 0.1}, 0.1, 0.0), o)) << "standing";
+  EXPECT_FALSE(IsRoadUser(TrackWith({1.5, 0.0}, 1.0, 0.0), o)) << "not surely moving";
+  EXPECT_TRUE(IsRoadUser(TrackWith({1.5, 0.0}, 0.3, 0.0), o));
+  EXPECT_TRUE(IsRoadUser(TrackWith({8.0, 0.0}, 2.0, -1.0), o));
+  EXPECT_TRUE(IsRoadUser(TrackWith({0.0, 0.0}, 0.1, 2.9), o)) << "a walker the camera sees waiting";
+}
+
 // One frame in which the camera calls its pedestrian a car does not change the class.
-TEST(CameraClassHistoryTest, OneConfusedFrameKeepsTheClassOfTheCamerasTrack) {
-  CameraClassHistory history;
+TEST(CameraTrackHistoryTest, OneConfusedFrameKeepsTheClassOfTheCamerasTrack) {
+  CameraTrackHistory history;
   fusion::FusedObject o = Object(ObjectClass::kPedestrian, {6.0, 1.0}, {6.0, 1.6});
   o.class_pmf = Certain(ObjectClass::kPedestrian, 0.9);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_EQ(history.Update(Frame(FromSeconds(0.05 * k), {o}))[0], ObjectClass::kPedestrian);
+    const std::vector<CameraHistory> h = history.Update(Frame(FromSeconds(0.05 * k), {o}));
+    EXPECT_EQ(h[0].object_class, ObjectClass::kPedestrian);
+    EXPECT_EQ(h[0].frames, k + 1);
   }
   o.class_pmf = Certain(ObjectClass::kCar, 0.9);
-  EXPECT_EQ(history.Update(Frame(FromSeconds(0.15), {o}))[0], ObjectClass::kPedestrian);
+  EXPECT_EQ(history.Update(Frame(FromSeconds(0.15), {o}))[0].object_class,
+            ObjectClass::kPedestrian);
   // Another camera track id has its own history; a lidar-only object keeps its own class.
   o.stereo_id = 8;
-  EXPECT_EQ(history.Update(Frame(FromSeconds(0.2), {o}))[0], ObjectClass::kCar);
+  EXPECT_EQ(history.Update(Frame(FromSeconds(0.2), {o}))[0].object_class, ObjectClass::kCar);
   o.stereo_id.reset();
-  EXPECT_EQ(history.Update(Frame(FromSeconds(0.25), {o}))[0], ObjectClass::kCar);
+  const CameraHistory lidar_only = history.Update(Frame(FromSeconds(0.25), {o}))[0];
+  EXPECT_EQ(lidar_only.object_class, ObjectClass::kCar);
+  EXPECT_EQ(lidar_only.frames, 0);
   // An id unseen for longer than the memory starts afresh.
   o.stereo_id = 7;
-  EXPECT_EQ(history.Update(Frame(FromSeconds(2.0), {o}))[0], ObjectClass::kCar);
+  const CameraHistory again = history.Update(Frame(FromSeconds(2.0), {o}))[0];
+  EXPECT_EQ(again.object_class, ObjectClass::kCar);
+  EXPECT_EQ(again.frames, 1);
 }
 
 // A walker crossing at 1.5 m/s, seen by both sensors every 80 ms: confirmed at its first update

@@ -97,7 +97,8 @@ struct MhtTracker::ScanWork {
   struct Gated {
     int detection = 0;
     double log_likelihood = 0.0;
-    NodePtr updated;  // made when a kept hypothesis takes the pair
+    NodePtr updated;  // made when a kept hypothesis takes the pair; null if the track ends
+    bool made = false;
   };
   struct Branches {
     const Node* node = nullptr;
@@ -231,14 +232,20 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
   const auto updated = [&](ScanWork::Branches& b, int j) -> NodePtr {
     ScanWork::Gated& g = *std::find_if(b.gated.begin(), b.gated.end(),
                                        [j](const ScanWork::Gated& x) { return x.detection == j; });
-    if (!g.updated) {
+    if (!g.made) {
+      g.made = true;
       const Detection& d = detections[static_cast<std::size_t>(j)];
-      auto node = std::make_shared<Node>();
-      node->tree = b.node->tree;
-      node->imm = Update(imm_, b.predicted, d.position_m, d.covariance).state;
-      node->track = AfterDetection(options_.management, b.node->track, d);
-      finish(*node, b.node->track);
-      g.updated = std::move(node);
+      Track track = AfterDetection(options_.management, b.node->track, d);
+      // The camera's evidence can end a track on a detection (a ghost): it takes the
+      // detection with it.
+      if (!Expired(options_.management, track)) {
+        auto node = std::make_shared<Node>();
+        node->tree = b.node->tree;
+        node->imm = Update(imm_, b.predicted, d.position_m, d.covariance).state;
+        node->track = std::move(track);
+        finish(*node, b.node->track);
+        g.updated = std::move(node);
+      }
     }
     return g.updated;
   };

@@ -294,6 +294,49 @@ MhtOptions CrowdOptions() {
   return o;
 }
 
+// A ghost: a lidar-only object moving steadily at 3 m/s inside the camera's view, which the
+// camera never reports, beside a walker the camera sees. Neither tracker ever confirms the
+// ghost; both confirm and keep the walker. Without the camera's evidence both confirm the ghost.
+template <typename T>
+void TrackGhostAndWalker(T& tracker, bool camera_speaks, bool& ghost_confirmed,
+                         bool& walker_kept) {
+  Rng rng(11);
+  ghost_confirmed = false;
+  walker_kept = true;
+  for (int k = 0; k < 40; ++k) {
+    const double t = kDt * k;
+    Detection ghost = At(Eigen::Vector2d(10.0 + 3.0 * t, 5.0) + Noise(rng, 0.1));
+    Detection walker = At(Eigen::Vector2d(12.0, -4.0 + 1.4 * t) + Noise(rng, 0.1),
+                          ObjectClass::kPedestrian, 2);
+    if (camera_speaks) {
+      ghost.camera = CameraEvidence::kUnseen;
+      walker.camera = CameraEvidence::kSeen;
+    }
+    ASSERT_TRUE(tracker.Step(k * kStep, {ghost, walker}));
+    const std::vector<Track> tracks = tracker.ConfirmedTracks();
+    if (NearestId(tracks, Eigen::Vector2d(10.0 + 3.0 * t, 5.0), 1.0) != 0) ghost_confirmed = true;
+    if (k > 0 && NearestId(tracks, Eigen::Vector2d(12.0, -4.0 + 1.4 * t), 1.0) == 0) {
+      walker_kept = false;
+    }
+  }
+}
+
+TEST(MhtTrackerTest, TheCamerasSilenceKeepsAGhostFromBeingConfirmed) {
+  bool ghost = false, walker = false;
+  MhtTracker mht;
+  TrackGhostAndWalker(mht, true, ghost, walker);
+  EXPECT_FALSE(ghost) << "MHT";
+  EXPECT_TRUE(walker) << "MHT";
+  GnnTracker gnn;
+  TrackGhostAndWalker(gnn, true, ghost, walker);
+  EXPECT_FALSE(ghost) << "GNN";
+  EXPECT_TRUE(walker) << "GNN";
+  MhtTracker blind;
+  TrackGhostAndWalker(blind, false, ghost, walker);
+  EXPECT_TRUE(ghost) << "without the camera's evidence the ghost is a target like any other";
+  EXPECT_TRUE(walker);
+}
+
 TEST(MhtTrackerTest, IdsStayWhenTheBestHypothesisChanges) {
   const Scene scene = CrowdScene(5, 80);
   MhtTracker tracker(CrowdOptions());

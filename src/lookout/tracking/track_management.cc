@@ -1,5 +1,8 @@
 #include "lookout/tracking/track_management.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "lookout/core/input_error.h"
 
 namespace lookout::tracking {
@@ -22,6 +25,30 @@ void TrackManagementOptions::Validate(const std::string& source) const {
   require(max_misses_vehicle >= 0, "max_misses_vehicle", "must be >= 0");
   require(max_misses_unknown >= 0, "max_misses_unknown", "must be >= 0");
   require(max_misses_tentative >= 0, "max_misses_tentative", "must be >= 0");
+  require(camera_detection_probability > 0.0 && camera_detection_probability < 1.0,
+          "camera_detection_probability", "must be in (0, 1)");
+  require(camera_ghost_probability > 0.0 && camera_ghost_probability < 1.0,
+          "camera_ghost_probability", "must be in (0, 1)");
+  require(min_existence_probability >= 0.0 && min_existence_probability < 0.5,
+          "min_existence_probability", "must be in [0, 0.5)");
+  require(std::isfinite(existence_log_odds_limit) && existence_log_odds_limit > 0.0,
+          "existence_log_odds_limit", "must be > 0");
+}
+
+double ExistenceAfter(const TrackManagementOptions& o, double log_odds, CameraEvidence e) {
+  const double pd = o.camera_detection_probability, pg = o.camera_ghost_probability;
+  switch (e) {
+    case CameraEvidence::kNone: return log_odds;
+    case CameraEvidence::kSeen: log_odds += std::log(pd / pg); break;
+    case CameraEvidence::kUnseen: log_odds += std::log((1.0 - pd) / (1.0 - pg)); break;
+  }
+  return std::clamp(log_odds, -o.existence_log_odds_limit, o.existence_log_odds_limit);
+}
+
+bool Expired(const TrackManagementOptions& o, const Track& t) {
+  if (t.misses > MaxMisses(o, t)) return true;
+  const double p = o.min_existence_probability;
+  return p > 0.0 && t.existence_log_odds < std::log(p / (1.0 - p));
 }
 
 int MaxMisses(const TrackManagementOptions& o, const Track& t) {
@@ -42,6 +69,7 @@ Track BornTrack(const TrackManagementOptions& o, const Detection& d, TimeNs stam
   t.object_class = d.object_class;
   t.stamp = stamp;
   t.updates = 1;
+  t.existence_log_odds = ExistenceAfter(o, 0.0, d.camera);
   if (t.updates >= UpdatesToConfirm(o, d)) t.status = TrackStatus::kConfirmed;
   return t;
 }
@@ -50,6 +78,7 @@ Track AfterDetection(const TrackManagementOptions& o, Track t, const Detection& 
   ++t.updates;
   t.misses = 0;
   t.coasting = false;
+  t.existence_log_odds = ExistenceAfter(o, t.existence_log_odds, d.camera);
   if (t.object_class == ObjectClass::kUnknown) t.object_class = d.object_class;
   if (t.status == TrackStatus::kTentative && t.updates >= UpdatesToConfirm(o, d)) {
     t.status = TrackStatus::kConfirmed;

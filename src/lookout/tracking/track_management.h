@@ -6,6 +6,22 @@
 // it coast (prediction only); it is deleted after a number of consecutive misses that depends on
 // its class (a tentative track, most likely clutter, goes sooner). Pure functions of a Track's
 // counters: the filters (CV Kalman, IMM) are the trackers' business.
+//
+// Beyond the paper, the camera's evidence against ghosts. The lidar's object source (the grid's
+// rigid clusters of dynamic cells) reports, besides road users, ghosts: clusters of static
+// structure read as moving, which move steadily for seconds where nothing is, and which a
+// tracker confirms like any object seen by one sensor. The camera sees what the lidar sees
+// inside its field of view (the two look out from nearly the same place), so a lidar-only
+// detection there that the camera does not report is evidence that the object is not a road
+// user. Each track carries the log odds L that it is a road user rather than a ghost, from 0
+// (even odds) at birth; each detection in the camera's view adds the log likelihood ratio of
+// what the camera said:
+//   seen:   L += log(P_D / P_G)              P_D: the camera reports a road user in its view
+//   unseen: L += log((1 - P_D) / (1 - P_G))  P_G: a camera object lands on a ghost by chance
+// clamped to +-existence_log_odds_limit (so that old evidence does not outweigh new for ever);
+// a track whose existence probability falls below min_existence_probability is deleted.
+// Detections outside the camera's view, and scans without a detection, are no evidence: a
+// road user hidden from both sensors says nothing either way.
 
 #include <string>
 
@@ -24,6 +40,14 @@ struct TrackManagementOptions {
   int max_misses_vehicle = 20;
   int max_misses_unknown = 5;
   int max_misses_tentative = 2;
+  // The camera's evidence (above). P_D: the simulated camera misses 5 % of the road users in
+  // its view, and fusion can fail to pair a camera object with its lidar object; P_G: a camera
+  // object within the gate of a ghost, by chance (its false objects are 0.1 a frame over the
+  // whole field of view).
+  double camera_detection_probability = 0.9;
+  double camera_ghost_probability = 0.05;
+  double min_existence_probability = 0.05;
+  double existence_log_odds_limit = 5.0;
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "track management options") const;
@@ -44,9 +68,11 @@ Track AfterDetection(const TrackManagementOptions& options, Track track,
 // `track` after a scan that brought it nothing: coasting, one more miss.
 Track AfterMiss(Track track);
 
-// Whether `track` has been missed too often and must go.
-inline bool Expired(const TrackManagementOptions& options, const Track& track) {
-  return track.misses > MaxMisses(options, track);
-}
+// The log odds of existence after the camera's evidence on one detection (above). Pure.
+double ExistenceAfter(const TrackManagementOptions& options, double log_odds, CameraEvidence e);
+
+// Whether `track` has been missed too often, or the camera has spoken against it too often, and
+// must go.
+bool Expired(const TrackManagementOptions& options, const Track& track);
 
 }  // namespace lookout::tracking

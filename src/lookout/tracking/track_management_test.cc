@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "lookout/core/input_error.h"
 
 namespace lookout::tracking {
@@ -59,6 +61,54 @@ TEST(TrackManagement, AnUnknownTrackLearnsItsClass) {
   EXPECT_EQ(t.object_class, ObjectClass::kCyclist) << "kept once known";
 }
 
+Detection WithCamera(CameraEvidence e, int sensors = 1) {
+  Detection d = Seen(sensors);
+  d.camera = e;
+  return d;
+}
+
+// The camera's evidence moves the existence log odds by its likelihood ratios; no evidence
+// leaves them; the odds are clamped.
+TEST(TrackManagement, TheCamerasEvidenceMovesTheExistenceOdds) {
+  const TrackManagementOptions o;
+  const double seen = std::log(0.9 / 0.05), unseen = std::log(0.1 / 0.95);
+  EXPECT_DOUBLE_EQ(ExistenceAfter(o, 0.0, CameraEvidence::kSeen), seen);
+  EXPECT_DOUBLE_EQ(ExistenceAfter(o, 0.0, CameraEvidence::kUnseen), unseen);
+  EXPECT_DOUBLE_EQ(ExistenceAfter(o, 1.5, CameraEvidence::kNone), 1.5);
+  EXPECT_DOUBLE_EQ(ExistenceAfter(o, 4.0, CameraEvidence::kSeen), o.existence_log_odds_limit);
+  EXPECT_DOUBLE_EQ(ExistenceAfter(o, -4.0, CameraEvidence::kUnseen), -o.existence_log_odds_limit);
+  EXPECT_DOUBLE_EQ(BornTrack(o, WithCamera(CameraEvidence::kUnseen), 0).existence_log_odds, unseen);
+}
+
+// A lidar-only object that the camera, looking at it, never reports ends on its second such
+// detection (existence 0.01, below 0.05), before three updates could confirm it; a road user the
+// camera sees survives an occasional miss of the camera's, and one outside the camera's view is
+// not judged.
+TEST(TrackManagement, TheCamerasSilenceEndsAGhost) {
+  const TrackManagementOptions o;
+  Track ghost = BornTrack(o, WithCamera(CameraEvidence::kUnseen), 0);
+  EXPECT_FALSE(Expired(o, ghost));
+  ghost = AfterDetection(o, ghost, WithCamera(CameraEvidence::kUnseen));
+  EXPECT_TRUE(Expired(o, ghost));
+  EXPECT_EQ(ghost.status, TrackStatus::kTentative);
+
+  Track walker = BornTrack(o, WithCamera(CameraEvidence::kSeen, 2), 0);
+  for (int k = 0; k < 20; ++k) {
+    const bool camera_missed = k % 5 == 4;  // one frame in five
+    walker = AfterDetection(
+        o, walker, WithCamera(camera_missed ? CameraEvidence::kUnseen : CameraEvidence::kSeen,
+                              camera_missed ? 1 : 2));
+    EXPECT_FALSE(Expired(o, walker)) << k;
+  }
+  EXPECT_GT(walker.existence_log_odds, 0.0);
+
+  Track beside = BornTrack(o, WithCamera(CameraEvidence::kNone), 0);
+  for (int k = 0; k < 10; ++k) beside = AfterDetection(o, beside, WithCamera(CameraEvidence::kNone));
+  EXPECT_FALSE(Expired(o, beside));
+  EXPECT_EQ(beside.existence_log_odds, 0.0);
+  EXPECT_EQ(beside.status, TrackStatus::kConfirmed);
+}
+
 TEST(TrackManagement, ValidateNamesTheField) {
   TrackManagementOptions o;
   o.max_misses_cyclist = -1;
@@ -68,6 +118,12 @@ TEST(TrackManagement, ValidateNamesTheField) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("max_misses_cyclist"), std::string::npos) << e.what();
   }
+  o = TrackManagementOptions{};
+  o.camera_detection_probability = 1.0;  // a camera that never misses makes one miss fatal
+  EXPECT_THROW(o.Validate(), InputError);
+  o = TrackManagementOptions{};
+  o.min_existence_probability = 0.5;
+  EXPECT_THROW(o.Validate(), InputError);
 }
 
 }  // namespace

@@ -17,12 +17,21 @@
 
 namespace lookout::tracking {
 
+// What the camera says about a detection: whether the object is a road user at all, where the
+// lidar alone may report grid ghosts (docs/tracking.md, track management).
+enum class CameraEvidence {
+  kNone,    // outside the camera's view, or no camera frame this scan: no evidence
+  kSeen,    // the camera reported it (fused with it, or a camera object)
+  kUnseen,  // inside the camera's field of view and depth, and the camera reported nothing there
+};
+
 // One object to track, in a ground-fixed frame: a fused object, or one sensor's.
 struct Detection {
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // m^2
   ObjectClass object_class = ObjectClass::kUnknown;
   int sensors = 1;  // how many sensors saw it (2: lidar and stereo)
+  CameraEvidence camera = CameraEvidence::kNone;
 };
 
 enum class TrackStatus { kTentative, kConfirmed };
@@ -42,6 +51,9 @@ struct Track {
   int updates = 0;       // detections associated so far
   int misses = 0;        // consecutive scans without one
   bool coasting = false; // the last scan brought no detection
+  // The log odds that the track is a road user rather than a ghost of the lidar's object
+  // source, from the camera's evidence on its detections (track_management.h); 0 without any.
+  double existence_log_odds = 0.0;
   // The filter's mode probabilities (the MHT's IMM: CV, CA, left turn, right turn); empty for
   // a single-model filter.
   Eigen::VectorXd mode_probabilities;
