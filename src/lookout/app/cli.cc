@@ -95,11 +95,15 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
   std::cout << fmt::format("recording   {}\n", recording);
 }
 
-// The pipeline's choices that the command line can make (docs/lidar-chain.md).
+// The pipeline's choices that the command line can make (docs/lidar-chain.md, docs/tracking.md,
+// docs/risk.md).
 struct PipelineChoices {
   std::string ego_pose = "odometry";
   std::string lidar_objects = "grid";
   std::string stereo_class = "on";
+  std::string tracker = "mht";
+  std::string risk_shape = "boxes";
+  std::string pedestrian_model = "constant-velocity";
 
   PipelineOptions Options() const {
     PipelineOptions o;
@@ -108,6 +112,10 @@ struct PipelineChoices {
                                         : EgoPoseMode::kLidarLocalisation;
     o.lidar_objects = lidar_objects == "segmentation" ? LidarObjectSource::kSegmentation
                                                       : LidarObjectSource::kGrid;
+    // The names are checked by CLI11 (IsMember) before they get here.
+    o.tracking_options.tracker = *ParseTrackerKind(tracker);
+    o.risk_options.risk.shape = *risk::ParseCollisionShape(risk_shape);
+    o.risk_options.risk.pedestrian_model = *risk::ParsePedestrianModel(pedestrian_model);
     return o;
   }
 };
@@ -127,6 +135,21 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
       ->add_option("--stereo-class", choices.stereo_class,
                    "The camera's classes as evidence for the grid's class layer: on or off")
       ->check(CLI::IsMember({"on", "off"}));
+  command
+      ->add_option("--tracker", choices.tracker,
+                   "The tracker: mht (Reid's MHT with the IMM) or gnn (the baseline); the GNN "
+                   "also runs beside the MHT")
+      ->check(CLI::IsMember({"mht", "gnn"}));
+  command
+      ->add_option("--risk-shape", choices.risk_shape,
+                   "Collision footprints: boxes (vehicles as oriented boxes) or circles (the "
+                   "paper's)")
+      ->check(CLI::IsMember({"boxes", "circles"}));
+  command
+      ->add_option("--pedestrian-model", choices.pedestrian_model,
+                   "Pedestrian prediction: constant-velocity (with a sampled spread) or "
+                   "growing-circle (the paper's)")
+      ->check(CLI::IsMember({"constant-velocity", "growing-circle"}));
 }
 
 int Run(const std::string& scenario_path, std::string out_dir, int threads,

@@ -23,11 +23,8 @@ int MaxLevel(const std::vector<risk::WarningEvent>& events) {
 
 }  // namespace
 
-std::vector<std::optional<double>> TrueTtcs(const sim::TruthFrame& truth,
-                                            const RiskStageOptions& options,
-                                            const std::vector<Eigen::Vector2d>& route_world) {
-  risk::RiskOptions o = options.risk;
-  o.collision_samples = 0;  // the TTC needs no sampling
+risk::RiskAssessment TrueAssessment(const sim::TruthFrame& truth, const RiskStageOptions& options,
+                                    const std::vector<Eigen::Vector2d>& route_world) {
   risk::EgoInput ego;
   const sim::KinematicState& e = truth.ego.state;
   ego.position_m = e.pose.translation;
@@ -45,13 +42,10 @@ std::vector<std::optional<double>> TrueTtcs(const sim::TruthFrame& truth,
     in.position_m = a.state.pose.translation;
     in.velocity_mps = a.state.Velocity();
     in.yaw_rate_radps = a.state.yaw_rate_radps;
+    in.yaw_rad = a.state.pose.yaw;
     objects.push_back(in);
   }
-  const risk::RiskAssessment r = risk::AssessRisk(ego, objects, o);
-  std::vector<std::optional<double>> out;
-  out.reserve(r.objects.size());
-  for (const risk::ObjectRisk& x : r.objects) out.push_back(x.ttc_s);
-  return out;
+  return risk::AssessRisk(ego, objects, options.risk);
 }
 
 RiskScorer::RiskScorer(const Pose2& world_from_odom, const RiskStageOptions& options,
@@ -68,15 +62,12 @@ RiskScorer::RiskScorer(const Pose2& world_from_odom, const RiskStageOptions& opt
 
 void RiskScorer::Observe(const sim::TruthFrame& truth, const std::vector<tracking::Track>& tracks,
                          const risk::RiskAssessment& assessment) {
-  const std::vector<std::optional<double>> ttc = TrueTtcs(truth, options_, route_world_);
-  std::optional<double> earliest;
-  for (const auto& t : ttc) {
-    if (t && (!earliest || *t < *earliest)) earliest = t;
-  }
-  ideal_.Update(truth.stamp, risk::RiskIndicator(earliest, options_.risk), std::nullopt, earliest);
+  const risk::RiskAssessment ideal = TrueAssessment(truth, options_, route_world_);
+  ideal_.Update(truth.stamp, ideal);
 
   for (std::size_t i = 0; i < truth.actors.size(); ++i) {
-    if (!ttc[i] || *ttc[i] >= scoring_.true_ttc_below_s) continue;
+    const std::optional<double> true_ttc = ideal.objects[i].ttc_s;
+    if (!true_ttc || *true_ttc >= scoring_.true_ttc_below_s) continue;
     const Eigen::Vector2d actor = truth.actors[i].state.pose.translation;
     // The actor's track: the nearest confirmed track within the match distance.
     const tracking::Track* best = nullptr;
@@ -95,7 +86,7 @@ void RiskScorer::Observe(const sim::TruthFrame& truth, const std::vector<trackin
       }
     }
     if (estimate) {
-      abs_error_sum_ += std::abs(*estimate - *ttc[i]);
+      abs_error_sum_ += std::abs(*estimate - *true_ttc);
       ++pairs_;
     } else {
       ++missing_;

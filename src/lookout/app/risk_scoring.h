@@ -8,16 +8,16 @@
 //   first warning; absent without a contact or a warning), risk.first_information_s,
 //   risk.max_level (0 none, 1 information, 2 warning).
 // - risk.ttc_mae_s: the true TTC is the TTC "in the same sense" as the estimate: the same
-//   prediction (the same model of each class, the same circles, the ego along the same route or
-//   from its state as the stage) run on the true states of the ego and the actors, without the
-//   track covariance's margin. Wherever an actor's true TTC is below 4 s, its track (the
+//   prediction (the same model of each class, the same footprints, the ego along the same route
+//   or from its state as the stage) run on the true states of the ego and the actors (their
+//   true headings; no covariance, so no covariance margin). Wherever an actor's true TTC is below 4 s, its track (the
 //   confirmed track nearest to it within 2 m) is compared: the mean absolute difference over
 //   those frames, risk.ttc_pairs of them; risk.ttc_missing counts the frames where the actor
 //   had no track or its track no TTC. This measures what perception and tracking cost the TTC;
 //   how far the prediction model itself is from the real future shows in the lead time.
-// - risk.ideal_first_warning_s, risk.ideal_max_level: the warning levels (same thresholds and
-//   hysteresis) on the true TTCs: what perfect perception would give, so that the gap to the
-//   stage's own figures is what the perception chain loses.
+// - risk.ideal_first_warning_s, risk.ideal_max_level: the warning levels (same rule, thresholds
+//   and hysteresis) on the true states' assessment: what perfect perception would give, so that
+//   the gap to the stage's own figures is what the perception chain loses.
 // - risk.expectation_met: 1 when the scenario's `expect` holds (a warning by warn_before and at
 //   least 2.0 s before the true contact; or, for expect.warning false, nothing above
 //   information), 0 otherwise; absent when the scenario states no expectation.
@@ -43,11 +43,11 @@ struct RiskScoringOptions {
   double min_lead_time_s = 2.0;  // the driver's and the vehicle's reaction time
 };
 
-// The true TTC of each actor of `truth` (indexed as truth.actors) under `options`' prediction,
-// the ego along `route_world` when the options predict along a route. Pure.
-std::vector<std::optional<double>> TrueTtcs(const sim::TruthFrame& truth,
-                                            const RiskStageOptions& options,
-                                            const std::vector<Eigen::Vector2d>& route_world);
+// The risk of each actor of `truth` (objects indexed as truth.actors) under `options`'
+// prediction, from the true states (poses, velocities, no covariance), the ego along
+// `route_world` when the options predict along a route. Pure.
+risk::RiskAssessment TrueAssessment(const sim::TruthFrame& truth, const RiskStageOptions& options,
+                                    const std::vector<Eigen::Vector2d>& route_world);
 
 class RiskScorer {
  public:

@@ -118,13 +118,7 @@ void RiskStage::Step(TimeNs stamp, const Pose2& ego_pose,
   if (options_.ego_prediction == EgoPrediction::kRoute) ego_.route_m = route_;
   assessment_ = risk::AssessRisk(ego_, InterpretTracks(tracks), options_.risk);
   dropped_ += static_cast<std::int64_t>(assessment_.dropped);
-  std::optional<std::uint32_t> object;
-  std::optional<double> ttc;
-  if (assessment_.earliest) {
-    object = assessment_.objects[*assessment_.earliest].id;
-    ttc = assessment_.objects[*assessment_.earliest].ttc_s;
-  }
-  warnings_.Update(stamp, assessment_.risk, object, ttc);
+  warnings_.Update(stamp, assessment_);
   step_ms_.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
   last_stamp_ = stamp;
 }

@@ -39,9 +39,10 @@ tracking::Track TrackAt(std::uint32_t id, ObjectClass c, Eigen::Vector2d p, Eige
   return t;
 }
 
-// Head-on in the ego's lane: the gap between the circles (4.84 m apart at 40 m) closes at
-// 20 m/s, TTC 1.758 s, under the reaction time: a warning naming the car at once; a car that
-// turned away lets it fall after the hold time. A NaN track is dropped and counted.
+// Head-on in the ego's lane: the gap between the boxes' fronts (2.3 + 2.25 m from the centres,
+// 40 m apart) closes at 20 m/s, TTC 1.7725 s, under the reaction time: a warning naming the car
+// at once; a car that turned away lets it fall after the hold time. A NaN track is dropped and
+// counted.
 TEST(RiskStageTest, WarnsOfAHeadOnCarAndNamesIt) {
   RiskStageOptions options;
   options.risk.growth_per_metre = 0.0;
@@ -60,7 +61,7 @@ TEST(RiskStageTest, WarnsOfAHeadOnCarAndNamesIt) {
   EXPECT_EQ(e.level, risk::WarningLevel::kWarning);
   EXPECT_EQ(e.object_id, 4u);
   ASSERT_TRUE(e.ttc_s.has_value());
-  EXPECT_NEAR(*e.ttc_s, (40.0 - 2.0 * 2.42) / 20.0, 1e-9);
+  EXPECT_NEAR(*e.ttc_s, (40.0 - 2.3 - 2.25) / 20.0, 1e-9);
   EXPECT_NEAR(stage.last_ego().speed_mps, 10.0, 1e-9);
 
   const tracking::Track away = TrackAt(4, ObjectClass::kCar, {40.0, 30.0}, {0.0, 10.0});
@@ -74,8 +75,8 @@ TEST(RiskStageTest, WarnsOfAHeadOnCarAndNamesIt) {
 }
 
 // The right hook: the ego at 6 m/s, 15 m before a corner where its route turns right; a cyclist
-// 4 m to its right rides on straight at 6 m/s (circles 3.37 m apart: no overlap side by side). From the ego's heading there is no collision; along
-// the route there is, about 2.5 s ahead.
+// 4 m to its right rides on straight at 6 m/s (its box 2.75 m from the ego's side by side).
+// From the ego's heading there is no collision; along the route there is, about 2.5 s ahead.
 TEST(RiskStageTest, TheRouteShowsTheTurnThatTheHeadingCannot) {
   const std::vector<tracking::Track> cyclist = {
       TrackAt(1, ObjectClass::kCyclist, {0.0, -4.0}, {6.0, 0.0})};

@@ -12,36 +12,60 @@
 namespace lookout::risk {
 namespace {
 
-double TypeRadius(ObjectClass c, const RiskOptions& o) {
+struct Extent {
+  double length_m = 0.0, width_m = 0.0;
+};
+
+// The box of a class that is predicted as a vehicle (MovesLikeAVehicle).
+Extent BoxOf(ObjectClass c, const RiskOptions& o) {
   switch (c) {
-    case ObjectClass::kCar: return o.car_radius_m;
-    case ObjectClass::kTruck: return o.truck_radius_m;
-    case ObjectClass::kCyclist: return o.cyclist_radius_m;
-    case ObjectClass::kPedestrian: return o.pedestrian_radius_m;
-    case ObjectClass::kPole:
-    case ObjectClass::kUnknown: return o.unknown_radius_m;
+    case ObjectClass::kTruck: return {o.truck_length_m, o.truck_width_m};
+    case ObjectClass::kCyclist: return {o.cyclist_length_m, o.cyclist_width_m};
+    default: return {o.car_length_m, o.car_width_m};
   }
-  return o.unknown_radius_m;
+}
+
+double RoundRadius(ObjectClass c, const RiskOptions& o) {
+  return c == ObjectClass::kPedestrian ? o.pedestrian_radius_m : o.unknown_radius_m;
 }
 
 bool MovesLikeAVehicle(ObjectClass c) {
   return c == ObjectClass::kCar || c == ObjectClass::kTruck || c == ObjectClass::kCyclist;
 }
 
-// Circles along a bicycle-model prediction, growing with the distance travelled.
-CircleTrack CirclesAlong(const std::vector<BicycleState>& states, double radius_m,
-                         double growth_per_metre) {
-  CircleTrack t;
-  t.centre_m.reserve(states.size());
-  t.radius_m.reserve(states.size());
+// A pose per step: what a footprint is placed at.
+struct PoseAt {
+  Eigen::Vector2d position_m;
+  double yaw_rad = 0.0;
+};
+
+// Footprints along a prediction, their margin growing with the distance travelled. `extent`
+// nullopt: circles of `radius_m`; else boxes of the extent (circles of half its diagonal when
+// `shape` is kCircles or the heading is unknown).
+FootprintTrack FootprintsAlong(const std::vector<PoseAt>& poses, std::optional<Extent> extent,
+                               bool heading_known, double radius_m, double margin_m,
+                               const RiskOptions& options) {
+  FootprintTrack t;
+  t.reserve(poses.size());
+  const bool boxes = extent && heading_known && options.shape == CollisionShape::kBoxes;
+  const double round =
+      extent ? 0.5 * std::hypot(extent->length_m, extent->width_m) : radius_m;
   double travelled = 0.0;
-  for (std::size_t k = 0; k < states.size(); ++k) {
-    const Eigen::Vector2d p(states[k].x_m, states[k].y_m);
-    if (k > 0) travelled += (p - t.centre_m.back()).norm();
-    t.centre_m.push_back(p);
-    t.radius_m.push_back(radius_m + growth_per_metre * travelled);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    if (k > 0) travelled += (poses[k].position_m - poses[k - 1].position_m).norm();
+    const double grown = margin_m + options.growth_per_metre * travelled;
+    t.push_back(boxes ? Footprint::Box(poses[k].position_m, poses[k].yaw_rad, extent->length_m,
+                                       extent->width_m, grown)
+                      : Footprint::Circle(poses[k].position_m, round + grown));
   }
   return t;
+}
+
+std::vector<PoseAt> PosesOf(const std::vector<BicycleState>& states) {
+  std::vector<PoseAt> out;
+  out.reserve(states.size());
+  for (const BicycleState& s : states) out.push_back({{s.x_m, s.y_m}, s.yaw_rad});
+  return out;
 }
 
 std::size_t StepCount(const RiskOptions& o) {
@@ -57,7 +81,7 @@ bool SymmetricPsd(const Eigen::Matrix2d& p) {
 
 bool Valid(const ObjectInput& object) {
   if (!object.position_m.allFinite() || !object.velocity_mps.allFinite() ||
-      !std::isfinite(object.yaw_rate_radps)) {
+      !std::isfinite(object.yaw_rate_radps) || (object.yaw_rad && !std::isfinite(*object.yaw_rad))) {
     return false;
   }
   return SymmetricPsd(object.position_covariance) && SymmetricPsd(object.velocity_covariance);
@@ -72,15 +96,24 @@ double RiskIndicator(std::optional<double> ttc_s, const RiskOptions& options) {
   return (options.horizon_s - *ttc_s) / (options.horizon_s - options.reaction_time_s);
 }
 
-CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options) {
+FootprintTrack PredictEgo(const EgoInput& ego, const RiskOptions& options) {
+  const Extent box{options.ego_length_m, options.ego_width_m};
   if (!ego.route_m.empty()) {
     const std::vector<Eigen::Vector2d> path =
         PredictAlongRoute(ego.route_m, ego.position_m, ego.speed_mps, ego.acceleration_mps2,
                           options.horizon_s, options.step_s);
-    std::vector<BicycleState> states;
-    states.reserve(path.size());
-    for (const Eigen::Vector2d& p : path) states.push_back({p.x(), p.y(), 0.0, 0.0, 0.0});
-    return CirclesAlong(states, options.ego_radius_m, options.growth_per_metre);
+    // The route gives places; the heading is the direction of travel between them (the ego's
+    // own while it stands).
+    std::vector<PoseAt> poses;
+    poses.reserve(path.size());
+    double yaw = ego.yaw_rad;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      const Eigen::Vector2d ahead = k + 1 < path.size() ? Eigen::Vector2d(path[k + 1] - path[k])
+                                                        : Eigen::Vector2d::Zero();
+      if (ahead.norm() > 1e-3) yaw = std::atan2(ahead.y(), ahead.x());
+      poses.push_back({path[k], yaw});
+    }
+    return FootprintsAlong(poses, box, true, 0.0, 0.0, options);
   }
   BicycleState s{ego.position_m.x(), ego.position_m.y(), ego.yaw_rad, ego.speed_mps, 0.0};
   BicycleInputs u;
@@ -88,35 +121,44 @@ CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options) {
     s.steering_rad = SteeringFromYawRate(ego.yaw_rate_radps, ego.speed_mps, options.wheelbase_m);
     u.acceleration_mps2 = ego.acceleration_mps2;
   }
-  // The ego's own position is known well: its circle grows with the distance only.
-  return CirclesAlong(PredictBicycle(s, u, options.wheelbase_m, options.horizon_s, options.step_s),
-                      options.ego_radius_m, options.growth_per_metre);
+  // The ego's own position is known well: its footprint grows with the distance only.
+  return FootprintsAlong(
+      PosesOf(PredictBicycle(s, u, options.wheelbase_m, options.horizon_s, options.step_s)), box,
+      true, 0.0, 0.0, options);
 }
 
-CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
-                          bool covariance_margin) {
+FootprintTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
+                             bool covariance_margin) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(object.position_covariance);
   const double sigma = std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
-  const double radius = TypeRadius(object.object_class, options) +
-                        (covariance_margin ? options.covariance_sigmas * sigma : 0.0);
+  const double margin = covariance_margin ? options.covariance_sigmas * sigma : 0.0;
   const double speed = object.velocity_mps.norm();
   if (MovesLikeAVehicle(object.object_class)) {
-    const double yaw = speed > 1e-9 ? std::atan2(object.velocity_mps.y(), object.velocity_mps.x())
-                                    : 0.0;
+    const bool heading_known = object.yaw_rad || speed >= options.min_heading_speed_mps;
+    const double yaw = object.yaw_rad ? *object.yaw_rad
+                       : speed > 1e-9 ? std::atan2(object.velocity_mps.y(), object.velocity_mps.x())
+                                      : 0.0;
     BicycleState s{object.position_m.x(), object.position_m.y(), yaw, speed, 0.0};
     if (options.hold_yaw_rate) {
       s.steering_rad = SteeringFromYawRate(object.yaw_rate_radps, speed, options.wheelbase_m);
     }
-    return CirclesAlong(PredictBicycle(s, {}, options.wheelbase_m, options.horizon_s, options.step_s),
-                        radius, options.growth_per_metre);
+    return FootprintsAlong(
+        PosesOf(PredictBicycle(s, {}, options.wheelbase_m, options.horizon_s, options.step_s)),
+        BoxOf(object.object_class, options), heading_known, 0.0, margin, options);
   }
-  // Pedestrians and unknown objects: no direction assumed.
-  CircleTrack t;
+  const double radius = RoundRadius(object.object_class, options) + margin;
   const std::size_t n = StepCount(options);
+  FootprintTrack t;
+  t.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
     const double time = static_cast<double>(k) * options.step_s;
-    t.centre_m.push_back(object.position_m);
-    t.radius_m.push_back(radius + options.pedestrian_growth_factor * speed * time);
+    if (options.pedestrian_model == PedestrianModel::kGrowingCircle) {
+      // The paper: no direction assumed.
+      t.push_back(Footprint::Circle(object.position_m,
+                                    radius + options.pedestrian_growth_factor * speed * time));
+    } else {
+      t.push_back(Footprint::Circle(object.position_m + time * object.velocity_mps, radius));
+    }
   }
   return t;
 }
@@ -124,7 +166,8 @@ CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
 RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& objects,
                           const RiskOptions& options) {
   RiskAssessment out;
-  const CircleTrack ego_track = PredictEgo(ego, options);
+  out.sampled = options.collision_samples > 0;
+  const FootprintTrack ego_track = PredictEgo(ego, options);
   const std::vector<Eigen::Vector4d> normals =
       DrawStandardNormals(options.collision_samples, DeriveSeed(options.seed, "risk", 0));
   for (const ObjectInput& object : objects) {
@@ -134,12 +177,18 @@ RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& o
     }
     ObjectRisk r;
     r.id = object.id;
-    const CircleTrack track = PredictObject(object, options);
+    const FootprintTrack track = PredictObject(object, options);
     if (const auto c = FirstCollision(ego_track, track, options.step_s)) r.ttc_s = c->ttc_s;
     r.risk = RiskIndicator(r.ttc_s, options);
     r.pet_s = PostEncroachmentTime(ego_track, track, options.step_s);
-    if (options.collision_samples > 0) {
-      const SamplingInput sampling{object.position_covariance, object.velocity_covariance};
+    if (out.sampled) {
+      SamplingInput sampling{object.position_covariance, object.velocity_covariance};
+      const bool walks = !MovesLikeAVehicle(object.object_class) &&
+                         options.pedestrian_model == PedestrianModel::kConstantVelocity;
+      if (walks) {
+        const double s = options.pedestrian_intent_sigma_mps;
+        sampling.velocity_covariance += s * s * Eigen::Matrix2d::Identity();
+      }
       r.collision_probability = CollisionProbability(
           ego_track, PredictObject(object, options, /*covariance_margin=*/false), options.step_s,
           sampling, normals);

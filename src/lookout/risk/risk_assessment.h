@@ -3,14 +3,20 @@
 // Risk assessment of seed 004 section VIII, steps B-D, for one instant:
 //   B. trajectory prediction to the horizon: vehicles (the ego included) by the kinematic bicycle
 //      model (bicycle_model.h); cyclists too (they keep to their path like vehicles, and a
-//      bicycle turns through an arc, not on the spot), with the smaller circle; pedestrians as a
-//      circle at the detected position whose radius grows with the estimated speed, no direction
-//      assumed (the paper); unknown objects as pedestrians, with the unknown radius;
-//   C. collision detection: a circle per object per step (collision.h), its radius the type's
-//      plus the position uncertainty (track covariance, growing with the distance travelled);
+//      bicycle turns through an arc, not on the spot), with their smaller footprint;
+//      pedestrians and unknown objects by RiskOptions::pedestrian_model: along their velocity
+//      (the default), or as the paper's circle at the detected position whose radius grows with
+//      the estimated speed, no direction assumed;
+//   C. collision detection: a footprint per object per step (footprint.h, collision.h): an
+//      oriented box for vehicles and cyclists (RiskOptions::shape; or the paper's circles), a
+//      circle for pedestrians, grown by the position uncertainty (track covariance, and with
+//      the distance travelled);
 //   D. quantification: the TTC of the earliest potential collision, and the risk indicator;
 //      beyond the paper, the collision probability and the post-encroachment time
-//      (risk_indicators.h).
+//      (risk_indicators.h). The probability samples the track's position and velocity
+//      covariances, and for pedestrians also the velocities a walker may choose
+//      (pedestrian_intent_sigma_mps): where the paper's growing circle says "anywhere within
+//      speed x t", the samples say how likely each place is.
 //
 // The risk indicator (the paper's Fig. 7, whose curve the text does not state; Lookout's
 // reading): 1 when the TTC is at most the total reaction time (2 s: nothing the driver starts
@@ -47,6 +53,9 @@ struct ObjectInput {
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
   Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
   double yaw_rate_radps = 0.0;
+  // The heading, when known apart from the velocity (a true state); otherwise the velocity's
+  // direction at min_heading_speed_mps or more, and none below.
+  std::optional<double> yaw_rad;
   Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();  // m^2
   Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Zero();  // (m/s)^2
 };
@@ -64,17 +73,18 @@ struct RiskAssessment {
   std::optional<std::size_t> earliest; // index into objects of the smallest TTC
   double risk = 0.0;                   // of the earliest potential collision
   std::size_t dropped = 0;             // objects with NaN fields or a non-PSD covariance
+  bool sampled = false;                // collision probabilities were computed
 };
 
 // The risk indicator of a TTC (nullopt: no collision within the horizon). Pure.
 double RiskIndicator(std::optional<double> ttc_s, const RiskOptions& options);
 
-// The circles of each prediction (exposed for tests and the recording). Pure.
-CircleTrack PredictEgo(const EgoInput& ego, const RiskOptions& options);
-// With `covariance_margin` false, the circles leave out the track covariance's margin (for
+// The footprints of each prediction (exposed for tests and the recording). Pure.
+FootprintTrack PredictEgo(const EgoInput& ego, const RiskOptions& options);
+// With `covariance_margin` false, the footprints leave out the track covariance's margin (for
 // sampling, which draws the uncertainty itself).
-CircleTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
-                          bool covariance_margin = true);
+FootprintTrack PredictObject(const ObjectInput& object, const RiskOptions& options,
+                             bool covariance_margin = true);
 
 // Steps B-D. `options` must pass Validate(). Objects with a non-finite field or a covariance
 // that is not symmetric positive semi-definite are dropped and counted, never used. Pure.

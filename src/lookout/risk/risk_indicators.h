@@ -2,19 +2,20 @@
 
 // Indicators beyond the paper's TTC (issue: risk quantification):
 //   - the collision probability, by sampling the object's initial position and velocity from
-//     its track covariance (seeded Monte Carlo): the share of samples whose circle meets the
+//     its track covariance (seeded Monte Carlo): the share of samples whose footprint meets the
 //     ego's inside the horizon. Each sample moves by the nominal prediction plus its offsets,
-//     dp + dv t: exact for straight motion, first order for a predicted turn;
+//     dp + dv t, its footprint turned as the nominal one: exact for straight motion, first
+//     order for a predicted turn;
 //   - the post-encroachment time (PET): the smallest time gap between the ego and the object
-//     occupying the same place (their circles overlapping at steps i and j: |t_i - t_j|). 0 is
-//     a collision; a few tenths of a second, a near miss.
+//     occupying the same place (their footprints overlapping at steps i and j: |t_i - t_j|). 0
+//     is a collision; a few tenths of a second, a near miss.
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
-#include "lookout/risk/collision.h"
+#include "lookout/risk/footprint.h"
 
 namespace lookout::risk {
 
@@ -29,15 +30,15 @@ struct SamplingInput {
 // samples for 30 tracks fit in a millisecond.
 std::vector<Eigen::Vector4d> DrawStandardNormals(int samples, std::uint64_t seed);
 
-// `object`: the nominal prediction, circles without the covariance margin. The share of the
-// samples (`normals`, mapped through the covariances' square roots) whose circle meets the
+// `object`: the nominal prediction, footprints without the covariance margin. The share of the
+// samples (`normals`, mapped through the covariances' square roots) whose footprint meets the
 // ego's. Pure.
-double CollisionProbability(const CircleTrack& ego, const CircleTrack& object, double dt_s,
+double CollisionProbability(const FootprintTrack& ego, const FootprintTrack& object, double dt_s,
                             const SamplingInput& sampling,
                             const std::vector<Eigen::Vector4d>& normals);
 
 // nullopt when the two never occupy the same place within the horizon. Pure.
-std::optional<double> PostEncroachmentTime(const CircleTrack& ego, const CircleTrack& object,
-                                           double dt_s);
+std::optional<double> PostEncroachmentTime(const FootprintTrack& ego,
+                                           const FootprintTrack& object, double dt_s);
 
 }  // namespace lookout::risk

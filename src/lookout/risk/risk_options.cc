@@ -16,21 +16,56 @@ bool NonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 
 }  // namespace
 
+std::optional<CollisionShape> ParseCollisionShape(const std::string& name) {
+  if (name == "circles") return CollisionShape::kCircles;
+  if (name == "boxes") return CollisionShape::kBoxes;
+  return std::nullopt;
+}
+
+const char* ToString(CollisionShape shape) {
+  switch (shape) {
+    case CollisionShape::kCircles: return "circles";
+    case CollisionShape::kBoxes: return "boxes";
+  }
+  return "boxes";
+}
+
+std::optional<PedestrianModel> ParsePedestrianModel(const std::string& name) {
+  if (name == "growing-circle") return PedestrianModel::kGrowingCircle;
+  if (name == "constant-velocity") return PedestrianModel::kConstantVelocity;
+  return std::nullopt;
+}
+
+const char* ToString(PedestrianModel model) {
+  switch (model) {
+    case PedestrianModel::kGrowingCircle: return "growing-circle";
+    case PedestrianModel::kConstantVelocity: return "constant-velocity";
+  }
+  return "constant-velocity";
+}
+
 void RiskOptions::Validate(const std::string& source) const {
   Require(Positive(horizon_s) && horizon_s <= 60.0, source, "horizon_s", "must be in (0, 60] s");
   Require(Positive(step_s) && step_s <= horizon_s, source, "step_s",
           "must be > 0 and at most the horizon");
   Require(Positive(wheelbase_m), source, "wheelbase_m",
           "must be > 0 (the steering angle is derived from yaw rate, speed and wheelbase)");
-  Require(Positive(ego_radius_m), source, "ego_radius_m", "must be > 0");
-  Require(Positive(car_radius_m), source, "car_radius_m", "must be > 0");
-  Require(Positive(truck_radius_m), source, "truck_radius_m", "must be > 0");
-  Require(Positive(cyclist_radius_m), source, "cyclist_radius_m", "must be > 0");
+  Require(Positive(ego_length_m), source, "ego_length_m", "must be > 0");
+  Require(Positive(ego_width_m), source, "ego_width_m", "must be > 0");
+  Require(Positive(car_length_m), source, "car_length_m", "must be > 0");
+  Require(Positive(car_width_m), source, "car_width_m", "must be > 0");
+  Require(Positive(truck_length_m), source, "truck_length_m", "must be > 0");
+  Require(Positive(truck_width_m), source, "truck_width_m", "must be > 0");
+  Require(Positive(cyclist_length_m), source, "cyclist_length_m", "must be > 0");
+  Require(Positive(cyclist_width_m), source, "cyclist_width_m", "must be > 0");
   Require(Positive(pedestrian_radius_m), source, "pedestrian_radius_m", "must be > 0");
   Require(Positive(unknown_radius_m), source, "unknown_radius_m", "must be > 0");
+  Require(NonNegative(min_heading_speed_mps), source, "min_heading_speed_mps", "must be >= 0");
   Require(NonNegative(covariance_sigmas), source, "covariance_sigmas", "must be >= 0");
   Require(NonNegative(growth_per_metre), source, "growth_per_metre", "must be >= 0");
   Require(NonNegative(pedestrian_growth_factor), source, "pedestrian_growth_factor",
+          "must be >= 0");
+  Require(NonNegative(pedestrian_intent_sigma_mps), source, "pedestrian_intent_sigma_mps",
           "must be >= 0");
   Require(collision_samples >= 0 && collision_samples <= 1000000, source, "collision_samples",
           "must be in [0, 10^6]");

@@ -3,9 +3,34 @@
 // Options of the risk stage (seed 004 section VIII), one plain struct with units in the names.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace lookout::risk {
+
+// How a road user's footprint is modelled for collision detection (footprint.h).
+enum class CollisionShape {
+  kCircles,  // the paper: a circle per object, of half the default footprint's diagonal
+  kBoxes,    // vehicles (the ego included) as oriented boxes, pedestrians as circles
+};
+
+// How a pedestrian (and an object of unknown kind) is predicted.
+enum class PedestrianModel {
+  // The paper: a circle at the detected position whose radius grows in proportion to the
+  // estimated speed, r0 + factor * speed * t, no direction assumed.
+  kGrowingCircle,
+  // Along its estimated velocity; where it may be instead is the spread of its position, which
+  // grows with time by the velocity's uncertainty (the track's covariance and the walker's own
+  // freedom to change course, pedestrian_intent_sigma_mps): sampled for the collision
+  // probability.
+  kConstantVelocity,
+};
+
+// "circles", "boxes"; "growing-circle", "constant-velocity"; nullopt for another name.
+std::optional<CollisionShape> ParseCollisionShape(const std::string& name);
+const char* ToString(CollisionShape shape);
+std::optional<PedestrianModel> ParsePedestrianModel(const std::string& name);
+const char* ToString(PedestrianModel model);
 
 struct RiskOptions {
   // Prediction: the horizon h and the integration step (the paper's 0.1 s steps to 5 s).
@@ -17,21 +42,35 @@ struct RiskOptions {
   // derived from it) and acceleration: better on a bend, worse when a turn is ending.
   bool hold_yaw_rate = false;
 
-  // Collision circles: a radius per kind of road user (half the diagonal of the simulator's
-  // default footprints, so that a circle covers its box: car 4.5 x 1.8 m -> 2.42 m).
-  double ego_radius_m = 2.42;
-  double car_radius_m = 2.42;
-  double truck_radius_m = 4.19;
-  double cyclist_radius_m = 0.95;
+  CollisionShape shape = CollisionShape::kBoxes;
+  PedestrianModel pedestrian_model = PedestrianModel::kConstantVelocity;
+
+  // Footprints: the ego's own, and the default footprints of the scenario format for the other
+  // road users (boxes of length x width; the circles' radius is half the diagonal, so that a
+  // circle covers its box: car 4.5 x 1.8 m -> 2.42 m).
+  double ego_length_m = 4.6, ego_width_m = 1.9;
+  double car_length_m = 4.5, car_width_m = 1.8;
+  double truck_length_m = 8.0, truck_width_m = 2.5;
+  double cyclist_length_m = 1.8, cyclist_width_m = 0.6;
   double pedestrian_radius_m = 0.3;
   double unknown_radius_m = 1.0;
-  // Position uncertainty: the circle grows by n_sigma standard deviations of the track's
-  // position (largest eigenvalue of its covariance) and by this much per metre travelled.
+  // Below this speed a track's velocity gives no heading: a vehicle is then a circle of half
+  // its box's diagonal (every orientation covered).
+  double min_heading_speed_mps = 1.0;
+  // Position uncertainty: the footprint grows by n_sigma standard deviations of the track's
+  // position (largest eigenvalue of its covariance), and by this much per metre travelled. The
+  // paper grows its circles with the distance; here the uncertainty of the future is sampled
+  // for the collision probability instead (the track's velocity covariance, the walkers'
+  // freedom), and a footprint grown by 5 % of 100 m would make any car passing in the next lane
+  // a potential collision: 0 by default.
   double covariance_sigmas = 2.0;
-  double growth_per_metre = 0.05;
-  // Pedestrians (seed 004): no direction assumed; the circle stays at the detected position
-  // and its radius grows in proportion to the estimated speed: r0 + factor * speed * t.
+  double growth_per_metre = 0.0;
+  // kGrowingCircle: r0 + factor * speed * t.
   double pedestrian_growth_factor = 1.0;
+  // kConstantVelocity: the spread of velocities a walker may choose over the horizon (its
+  // speed and its direction: a fifth of a typical 1.4 m/s walking speed), added to the track's
+  // velocity covariance when sampling; pedestrians and unknown objects.
+  double pedestrian_intent_sigma_mps = 0.3;
 
   // Collision probability (risk_indicators.h): samples per object, 0 to skip, and the seed of
   // the draws (one set per step, shared by the objects: the same tracks give the same

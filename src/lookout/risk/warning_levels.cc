@@ -1,10 +1,26 @@
 #include "lookout/risk/warning_levels.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "lookout/core/input_error.h"
 
 namespace lookout::risk {
+namespace {
+
+// The level one object reaches under the enter thresholds (`holding` false) or the exit ones.
+WarningLevel ObjectLevel(const ObjectRisk& o, bool sampled, const WarningOptions& w,
+                         bool holding) {
+  const double warning = holding ? w.warning_exit : w.warning_enter;
+  const double probability = holding ? w.warning_probability_exit : w.warning_probability_enter;
+  const double information = holding ? w.information_exit : w.information_enter;
+  if (o.risk >= warning && (!sampled || o.collision_probability >= probability)) {
+    return WarningLevel::kWarning;
+  }
+  return o.risk >= information && o.risk > 0.0 ? WarningLevel::kInformation : WarningLevel::kNone;
+}
+
+}  // namespace
 
 const char* ToString(WarningLevel level) {
   switch (level) {
@@ -27,42 +43,54 @@ void WarningOptions::Validate(const std::string& source) const {
           "must be in [information_enter, 1]");
   require(in_unit(warning_exit) && warning_exit <= warning_enter, "warning_exit",
           "must be in [0, warning_enter]");
+  require(in_unit(warning_probability_enter), "warning_probability_enter", "must be in [0, 1]");
+  require(in_unit(warning_probability_exit) &&
+              warning_probability_exit <= warning_probability_enter,
+          "warning_probability_exit", "must be in [0, warning_probability_enter]");
   require(std::isfinite(hold_s) && hold_s >= 0.0, "hold_s", "must be finite and >= 0");
+}
+
+LevelInput LevelsOf(const RiskAssessment& a, const WarningOptions& options) {
+  LevelInput in;
+  std::optional<std::size_t> named;
+  for (std::size_t i = 0; i < a.objects.size(); ++i) {
+    const ObjectRisk& o = a.objects[i];
+    const WarningLevel entered = ObjectLevel(o, a.sampled, options, false);
+    in.held = std::max(in.held, ObjectLevel(o, a.sampled, options, true));
+    const bool earlier = !named || (o.ttc_s && (!a.objects[*named].ttc_s ||
+                                                *o.ttc_s < *a.objects[*named].ttc_s));
+    if (entered > in.entered || (entered == in.entered && entered != WarningLevel::kNone && earlier)) {
+      in.entered = entered;
+      named = i;
+    }
+  }
+  if (in.entered == WarningLevel::kNone) named = a.earliest;
+  if (named) {
+    in.object_id = a.objects[*named].id;
+    in.ttc_s = a.objects[*named].ttc_s;
+  }
+  return in;
 }
 
 WarningState::WarningState(const WarningOptions& options) : options_(options) {
   options_.Validate();
 }
 
-std::optional<WarningEvent> WarningState::Update(TimeNs stamp, double risk,
-                                                 std::optional<std::uint32_t> object_id,
-                                                 std::optional<double> ttc_s) {
+std::optional<WarningEvent> WarningState::Update(TimeNs stamp, const LevelInput& in) {
   if (last_stamp_ && stamp <= *last_stamp_) return std::nullopt;
   last_stamp_ = stamp;
-  if (!std::isfinite(risk)) risk = 0.0;
 
-  // Up at once: the level the risk reaches.
-  WarningLevel reached = WarningLevel::kNone;
-  if (risk >= options_.warning_enter) {
-    reached = WarningLevel::kWarning;
-  } else if (risk >= options_.information_enter) {
-    reached = WarningLevel::kInformation;
-  }
   WarningLevel next = level_;
-  if (reached > level_) {
-    next = reached;
+  if (in.entered > level_) {
+    next = in.entered;  // up at once
     below_since_.reset();
   } else if (level_ != WarningLevel::kNone) {
-    // Down only after hold_s below the current level's exit threshold, and then to the level
-    // the risk still holds.
-    const double exit = level_ == WarningLevel::kWarning ? options_.warning_exit
-                                                         : options_.information_exit;
-    if (risk < exit) {
+    // Down only after hold_s without an object that holds the current level, and then to the
+    // level still held.
+    if (std::max(in.held, in.entered) < level_) {
       if (!below_since_) below_since_ = stamp;
       if (ToSeconds(stamp - *below_since_) >= options_.hold_s) {
-        next = risk >= options_.information_exit && level_ == WarningLevel::kWarning
-                   ? WarningLevel::kInformation
-                   : WarningLevel::kNone;
+        next = std::max(in.held, in.entered);
         below_since_.reset();
       }
     } else {
@@ -71,7 +99,7 @@ std::optional<WarningEvent> WarningState::Update(TimeNs stamp, double risk,
   }
   if (next == level_) return std::nullopt;
   level_ = next;
-  WarningEvent e{stamp, next, object_id, ttc_s};
+  WarningEvent e{stamp, next, in.object_id, in.ttc_s};
   events_.push_back(e);
   return e;
 }
