@@ -55,9 +55,9 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
       lidar::ClusterScan(scan, options_.segmentation, options_.hits.min_range_m);
   last_objects_ = lidar::DescribeClusters(scan, clusters, hits_.beam, state->pose,
                                           options_.segmentation);
-  // The map takes each return's own class: a propagated class never keeps a return out of
-  // the map, so one false dynamic return cannot unmap a wall and feed on itself.
-  point_classes_ = hits_.beam;
+  // The map takes the propagated classes: a slow actor's returns that land on its own trace
+  // (static) stay out of it, so the trace does not follow the actor. The rule's thresholds
+  // keep a wall with a stray dynamic return in the map (docs/lidar-chain.md).
   lidar::PropagateDynamicSegments(scan, clusters, options_.dynamic_segments, hits_);
   const Clock::time_point segmented = Clock::now();
   std::vector<bool> unmapped;
@@ -83,7 +83,7 @@ void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& un
   hits.reserve(scan.ranges_m.size());
   const Eigen::Vector2d origin = scan.mount.translation;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    const lidar::HitClass k = point_classes_[i];
+    const lidar::HitClass k = hits_.beam[i];
     if (k == lidar::HitClass::kNoReturn) continue;
     const Eigen::Vector2d p = lidar::ReturnPoint(scan, i);
     const bool clears_only = options_.map_static_only &&

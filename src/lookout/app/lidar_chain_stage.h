@@ -72,8 +72,6 @@ class LidarChainStage : public Stage {
   std::optional<TimeNs> last_stamp_;
   std::optional<EgoState> last_state_;
   lidar::ScanHitClasses hits_;
-  // The classes before the segment rule (lidar/dynamic_segments.h): what the map takes.
-  std::vector<lidar::HitClass> point_classes_;
   std::optional<LidarObjectFrame> last_objects_;
   std::vector<double> localise_ms_;
   std::vector<double> hits_ms_;
