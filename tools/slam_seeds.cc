@@ -1,4 +1,4 @@
-// lookout_slam_seeds LOG... [--seeds FIRST-LAST] [--set NAME=VALUE]...
+// lookout_slam_seeds LOG... [--seeds FIRST-LAST] [--set NAME=VALUE]... [--segments N]
 //
 // How `lookout slam`'s figure moves with the seed of the particle filter: each CARMEN log is
 // localised once per seed (the same run as `lookout slam LOG --seed S`), and its ATE against the
@@ -8,11 +8,18 @@
 // --set changes one option of the localisation for the run (the names of slam_options.h,
 // "filter.particle_count=60"): the sensitivity of the figure to the option, measured.
 //
+// --segments N: after each log's row, where along the trajectory the error of the first seed
+// comes from: the scans cut into N spans of equal count, and for each the path length, the RMSE
+// of the position error after the whole trajectory's rigid alignment, and the translation error
+// of the 10 m relations that start in it (mean, and the worst with its two scans). A span whose relations are good and
+// whose aligned error is large inherits a bend made before it.
+//
 // Exit codes as the CLI's: 2 with one line on stderr for a bad log or option, 1 otherwise.
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <exception>
@@ -24,6 +31,7 @@
 
 #include "lookout/app/slam_command.h"
 #include "lookout/core/input_error.h"
+#include "lookout/eval/trajectory_error.h"
 
 namespace {
 
@@ -68,12 +76,61 @@ std::string LogName(const std::filesystem::path& path) {
   return name;
 }
 
+// The --segments table of one run (see the top of the file).
+std::string Segments(const lookout::io::CarmenLog& log, const lookout::lidar::SlamResult& result,
+                     int segments) {
+  const lookout::app::ScanPairs pairs = lookout::app::PairsAtScans(log, result);
+  const std::size_t n = pairs.estimate.size();
+  if (n < 2) return {};
+  const lookout::Pose2 align =
+      lookout::eval::AbsoluteErrorOfPairs(pairs.estimate, pairs.reference).alignment;
+  // Each scan's relation: to the first scan at least 10 m further along the reference path.
+  std::vector<double> path(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) {
+    path[i] = path[i - 1] +
+              (pairs.reference[i].translation - pairs.reference[i - 1].translation).norm();
+  }
+  std::string out = "\n| scans | path (m) | aligned error RMSE (m) | 10 m relations: mean (m) | worst (m) | worst between scans |\n|---|---:|---:|---:|---:|---:|\n";
+  std::size_t j = 0;
+  for (int k = 0; k < segments; ++k) {
+    const std::size_t begin = n * static_cast<std::size_t>(k) / static_cast<std::size_t>(segments);
+    const std::size_t end = n * static_cast<std::size_t>(k + 1) / static_cast<std::size_t>(segments);
+    if (begin >= end) continue;
+    double squared = 0.0, relation_sum = 0.0, relation_worst = 0.0;
+    std::size_t worst_from = begin, worst_to = begin;
+    int relations = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      squared += ((align * pairs.estimate[i]).translation - pairs.reference[i].translation).squaredNorm();
+      j = std::max(j, i + 1);
+      while (j < n && path[j] - path[i] < 10.0) ++j;
+      if (j >= n) continue;
+      const lookout::Pose2 truth = pairs.reference[i].Inverse() * pairs.reference[j];
+      const lookout::Pose2 estimate = pairs.estimate[i].Inverse() * pairs.estimate[j];
+      const double e = (truth.Inverse() * estimate).translation.norm();
+      relation_sum += e;
+      if (e > relation_worst) {
+        relation_worst = e;
+        worst_from = i;
+        worst_to = j;
+      }
+      ++relations;
+    }
+    out += fmt::format("| {}-{} | {:.0f} | {:.3f} | {} | {} | {} |\n", begin, end - 1,
+                       path[end - 1] - path[begin],
+                       std::sqrt(squared / static_cast<double>(end - begin)),
+                       relations ? fmt::format("{:.3f}", relation_sum / relations) : "-",
+                       relations ? fmt::format("{:.3f}", relation_worst) : "-",
+                       relations ? fmt::format("{}-{}", worst_from, worst_to) : "-");
+  }
+  return out + "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
     std::vector<std::string> logs;
-    int first_seed = 1, last_seed = 5;
+    int first_seed = 1, last_seed = 5, segments = 0;
     SlamOptions options = lookout::app::CarmenSlamOptions();
     const auto settable = Settable();
     std::vector<std::string> settings;
@@ -84,6 +141,9 @@ int main(int argc, char** argv) {
         if (std::sscanf(v.c_str(), "%d-%d", &first_seed, &last_seed) != 2 || first_seed > last_seed) {
           throw InputError("--seeds", 0, "seeds", "expected FIRST-LAST, as 1-5");
         }
+      } else if (a == "--segments" && i + 1 < argc) {
+        segments = std::stoi(argv[++i]);
+        if (segments < 1) throw InputError("--segments", 0, "segments", "expected a count >= 1");
       } else if (a == "--set" && i + 1 < argc) {
         const std::string v = argv[++i];
         const std::size_t eq = v.find('=');
@@ -111,12 +171,14 @@ int main(int argc, char** argv) {
       const std::vector<lookout::lidar::SlamRecord> records = lookout::app::SlamRecordsOf(log);
       std::string row = "| " + LogName(path) + " |";
       double worst = 0.0, sum = 0.0, cpu = 0.0;
+      std::string spans;
       for (int s = first_seed; s <= last_seed; ++s) {
         options.filter.seed = static_cast<std::uint64_t>(s);
         const std::clock_t start = std::clock();
         const lookout::lidar::SlamResult result = lookout::lidar::RunSlam(records, options);
         cpu += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
         const double ate = lookout::app::ReferenceError(log, result).ate_rmse_m;
+        if (segments > 0 && s == first_seed) spans = Segments(log, result, segments);
         worst = std::max(worst, ate);
         sum += ate;
         row += fmt::format(" {:.3f} |", ate);
@@ -126,7 +188,7 @@ int main(int argc, char** argv) {
       const double duration = log.records.back().t_s - log.records.front().t_s;
       row += fmt::format(" {:.3f} | {:.3f} |", worst, sum / n);
       row += duration > 0.0 ? fmt::format(" {:.0f}x |", duration * n / cpu) : std::string(" - |");
-      std::printf("%s\n", row.c_str());
+      std::printf("%s\n%s", row.c_str(), spans.c_str());
       std::fflush(stdout);
     }
   } catch (const InputError& e) {

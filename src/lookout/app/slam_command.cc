@@ -29,14 +29,6 @@ lidar::SlamOptions CarmenSlamOptions() {
   return options;
 }
 
-namespace {
-
-// The estimate and the reference pose at each scan that has both.
-struct ScanPairs {
-  std::vector<Pose2> estimate;
-  std::vector<Pose2> reference;
-};
-
 ScanPairs PairsAtScans(const io::CarmenLog& log, const lidar::SlamResult& result) {
   ScanPairs pairs;
   std::size_t scan = 0;
@@ -51,8 +43,6 @@ ScanPairs PairsAtScans(const io::CarmenLog& log, const lidar::SlamResult& result
   }
   return pairs;
 }
-
-}  // namespace
 
 eval::AbsoluteTrajectoryError ReferenceError(const io::CarmenLog& log,
                                              const lidar::SlamResult& result) {

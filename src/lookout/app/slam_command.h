@@ -34,6 +34,13 @@ lidar::SlamOptions CarmenSlamOptions();
 // The records the localisation may see: time, raw odometry and scan (no reference pose).
 std::vector<lidar::SlamRecord> SlamRecordsOf(const io::CarmenLog& log);
 
+// The estimate and the log's reference pose at each scan that has both, in scan order.
+struct ScanPairs {
+  std::vector<Pose2> estimate;
+  std::vector<Pose2> reference;
+};
+ScanPairs PairsAtScans(const io::CarmenLog& log, const lidar::SlamResult& result);
+
 // The estimate at each scan against the log's reference pose there (the corrected poses of the
 // Radish logs): ATE after a rigid alignment (eval/trajectory_error.h). `matched` 0 when fewer
 // than two scans pair up.
