@@ -26,7 +26,7 @@ namespace lookout::lidar {
 struct DynamicSegmentOptions {
   bool enabled = true;
   int min_dynamic_returns = 2;
-  double min_dynamic_share = 0.3;
+  double min_dynamic_share = 0.15;
   // Longer than any road user seen across (a car's diagonal is about 5 m).
   double max_chord_m = 6.0;
 
