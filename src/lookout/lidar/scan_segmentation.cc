@@ -83,6 +83,38 @@ double BeamSpacingOnSurface(const Vector2d& from_lidar, const Vector2d& along, d
   return r * dphi_rad / std::max(cos_incidence, kMinIncidenceCosine);
 }
 
+// How far the object's edge may lie beyond the front segment's outer end `end_point` (the
+// return of beam `end_beam`), stepping through the beams outward by `step` (+1 or -1) and along
+// the side's line in the direction `outward`. A beam whose return lies nearer than the line
+// (by more than the range noise) hides whatever is behind it, so the side may go on there; the
+// first beam that returns at or behind the line, or returns nothing, bounds it: the edge lies
+// between the end and that beam's crossing of the line. For an end seen free this is one beam
+// spacing; past the scan's field of view, or where the line runs off the beams, `cap_m`.
+double HiddenExtent(const LidarScan& scan, std::size_t end_beam, int step, const Line& line,
+                    const Vector2d& end_point, const Vector2d& outward, double margin_m,
+                    double cap_m) {
+  const Vector2d lidar = scan.mount.translation;
+  const auto cross = [](const Vector2d& a, const Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+  };
+  for (std::ptrdiff_t k = static_cast<std::ptrdiff_t>(end_beam) + step;
+       k >= 0 && k < static_cast<std::ptrdiff_t>(scan.ranges_m.size()); k += step) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    const double a = scan.mount.yaw + scan.BeamAngle(i);
+    const Vector2d beam(std::cos(a), std::sin(a));
+    const double denominator = cross(beam, line.direction);
+    if (std::abs(denominator) < 1e-9) return cap_m;
+    const double lambda = cross(line.mean - lidar, line.direction) / denominator;
+    if (lambda <= 0.0) return cap_m;
+    const double extent = outward.dot(lidar + lambda * beam - end_point);
+    if (extent >= cap_m) return cap_m;
+    const bool hidden = IsReturn(scan, i, 0.0) &&
+                        static_cast<double>(scan.ranges_m[i]) < lambda - margin_m;
+    if (!hidden) return std::max(extent, 0.0);
+  }
+  return cap_m;
+}
+
 LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
                             std::span<const HitClass> classes, const SegmentationOptions& options) {
   std::vector<Vector2d> points;
@@ -108,11 +140,34 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
   const Vector2d lidar = scan.mount.translation;
   const double dphi = std::abs(scan.angle_increment_rad);
   const double sigma_r2 = options.range_noise_m * options.range_noise_m;
-  const double s1 = BeamSpacingOnSurface(front.front() - lidar, u, dphi);
-  const double s2 = BeamSpacingOnSurface(front.back() - lidar, u, dphi);
-  // Each end: uniform over one beam spacing (s^2 / 12), and the range noise's component along
-  // the surface (at most sigma_r); the middle is their mean, so a quarter of the sum.
-  const double var_along = (s1 * s1 + s2 * s2) / 48.0 + sigma_r2 / 2.0;
+  // Where each end of the side really is: a corner (the L's) lies within one beam spacing of
+  // its return; an outer end of the cluster lies anywhere between its last return and the
+  // first beam that would have seen the side go on (HiddenExtent: one beam spacing where the
+  // end is seen free, up to the shadow's far edge where something nearer hides it, capped at
+  // max_side_length_m less what is seen). Each end's offset e_i, outward, uniform on [0, h_i];
+  // the middle moves by (e_2 - e_1) / 2 along the side. The point stays the visible middle (a
+  // shift by the mean would move a pedestrian half hidden by another by metres, for a prior of
+  // car-sized sides), so its variance along is the offset's second moment about zero,
+  // (h_1^2 + h_2^2) / 48 + (h_2 - h_1)^2 / 16, plus the range noise's component along the
+  // surface (at most sigma_r) at each end.
+  const double seen_m = (o.front_end_m - o.front_start_m).norm();
+  const double margin = options.breakpoint_noise_sigmas * options.range_noise_m;
+  const auto extent = [&](bool at_start) {
+    const std::size_t k = at_start ? begin : end - 1;
+    const Vector2d& p = points[k];
+    const double spacing = BeamSpacingOnSurface(p - lidar, u, dphi);
+    const bool outer = at_start ? begin == 0 : end == n;
+    if (!outer) return spacing;
+    const double cap = std::max(spacing, options.max_side_length_m - seen_m);
+    return HiddenExtent(scan, cluster.beams[k], at_start ? -1 : 1, line,
+                        at_start ? o.front_start_m : o.front_end_m, at_start ? -u : u, margin, cap);
+  };
+  // The line runs from the front's first beam to its last (FitLine), so the start's outward
+  // is -u, beam index down.
+  const double h1 = extent(true);
+  const double h2 = extent(false);
+  const double var_along =
+      (h1 * h1 + h2 * h2) / 48.0 + (h2 - h1) * (h2 - h1) / 16.0 + sigma_r2 / 2.0;
   const double var_across = sigma_r2 / static_cast<double>(front.size());
   Matrix2d axes;
   axes.col(0) = u;
@@ -168,6 +223,8 @@ void SegmentationOptions::Validate(const std::string& source) const {
   check(max_gap_beams >= 0, "max_gap_beams", "must be >= 0");
   check(min_points >= 1, "min_points", "must be >= 1");
   check(std::isfinite(corner_split_m) && corner_split_m > 0.0, "corner_split_m",
+        "must be finite and > 0");
+  check(std::isfinite(max_side_length_m) && max_side_length_m > 0.0, "max_side_length_m",
         "must be finite and > 0");
   check(std::isfinite(velocity_unknown_sigma_mps) && velocity_unknown_sigma_mps > 0.0,
         "velocity_unknown_sigma_mps", "must be finite and > 0");

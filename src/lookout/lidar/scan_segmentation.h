@@ -23,8 +23,10 @@
 //                  Its ends are the projections of its first and last points on the line.
 //   point_m        the front segment's middle; covariance from the range and bearing noise
 //                  (the line's offset, sigma_r^2 / n across it) and from where the ends really
-//                  are (the object's edge lies anywhere between the last return on it and the
-//                  first beam past it: one beam spacing, uniform, per end, along it);
+//                  are, along it: the object's edge lies anywhere between the last return on
+//                  it and the first beam that would have seen the side go on, one beam spacing
+//                  past an end seen free, up to the far edge of the shadow of whatever nearer
+//                  hides an end (or max_side_length_m less what is seen);
 //   centroid       mean of the points; range and bearing of it from the lidar's origin;
 //   extent         the points' bounding rectangle in the front segment's axes (a box seen on
 //                  one or two sides gets its sides' directions);
@@ -58,6 +60,10 @@ struct SegmentationOptions {
   double corner_split_m = 0.1;
   // Report only the dynamic objects (the paper's list, IV.D); false keeps static ones too.
   bool dynamic_only = true;
+  // The longest side an object is taken to have (a car's length): a side hidden in part by
+  // something nearer, or running out of the field of view, goes on at most this far less
+  // what is seen. Bounds the point's variance along the side.
+  double max_side_length_m = 5.0;
   // 1-sigma of each velocity axis of an object that has no velocity estimate.
   double velocity_unknown_sigma_mps = 100.0;
 

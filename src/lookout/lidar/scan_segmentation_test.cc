@@ -112,6 +112,44 @@ TEST(ScanSegmentation, TwoBoxesAWallAndAPoleAreFourObjects) {
   EXPECT_GT(along(*wall), along(*car));
 }
 
+// A car side on at 7 m, its left end hidden by a post at 4 m: the segment ends where the
+// post's shadow begins, its middle 0.5 m short of the side's true middle. The variance along
+// the side must say so (the shadow bounds how far the side may go on), while the same car seen
+// whole keeps one beam spacing per end.
+TEST(ScanSegmentation, AHiddenEndWidensThePointAlongTheSide) {
+  const int s = sim::kStaticOwner;
+  const sim::Shape car = sim::Shape::Box(Pose2(8.0, 0.0, kPi / 2.0), 4.5, 1.8, s);  // side x = 7.1
+  const Eigen::Vector2d true_middle(7.1, 0.0);
+  const auto along = [](const LidarObject& o) {
+    const Eigen::Vector2d u = (o.front_end_m - o.front_start_m).normalized();
+    return u.dot(o.point_covariance * u);
+  };
+
+  const LidarObjectFrame whole = SegmentScan(CastScan({car}), {}, Pose2(), KeepAll(), 0.1);
+  ASSERT_EQ(whole.objects.size(), 1u);
+  const LidarObject& seen = whole.objects[0];
+  EXPECT_LT((seen.point_m - true_middle).norm(), 0.05);
+  EXPECT_LT(std::sqrt(along(seen)), 0.03);
+
+  const LidarObjectFrame partly = SegmentScan(
+      CastScan({car, sim::Shape::Circle({4.0, 1.0}, 0.3, s)}), {}, Pose2(), KeepAll(), 0.1);
+  const LidarObject* hidden = Nearest(partly, {7.1, 0.0});
+  ASSERT_NE(hidden, nullptr);
+  const double error = (hidden->point_m - true_middle).norm();
+  EXPECT_GT(error, 0.4);  // the visible part's middle is not the side's
+  const double sigma = std::sqrt(along(*hidden));
+  // The post's shadow covers y from 1.24 to 2.33 m on the side (which ends at 2.25), so the
+  // side may go on h = 1.09 m (and a beam spacing) past the visible end; the other end, seen
+  // free, one beam spacing (0.03 m): the second moment (h^2 + s^2) / 48 + (h - s)^2 / 16,
+  // sigma 0.31 m. The error, 0.5 m, is within two of them.
+  EXPECT_NEAR(sigma, 0.31, 0.03);
+  EXPECT_LT(error, 2.0 * sigma);
+  // The post itself is seen whole: its neighbours return from the car, further away.
+  const LidarObject* post = Nearest(partly, {4.0, 1.0});
+  ASSERT_NE(post, nullptr);
+  EXPECT_LT(std::sqrt(along(*post)), 0.05);
+}
+
 TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
   const LidarScan scan = CastScan(Scene());
   std::vector<HitClass> classes(scan.ranges_m.size(), HitClass::kNoReturn);
@@ -204,6 +242,9 @@ TEST(ScanSegmentation, OptionsNameTheBadField) {
   }
   o = {};
   o.min_points = 0;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.max_side_length_m = 0.0;
   EXPECT_THROW(o.Validate(), InputError);
 }
 
