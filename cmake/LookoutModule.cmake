@@ -18,6 +18,28 @@ function(lookout_apply_flags target)
   endif()
 endfunction()
 
+# One precompiled header for every test program. Parsing is most of a test file's compile
+# (dead_reckoning_test.cc at -O3: 8.9 s, of which 5.6 s before code generation), and most of
+# that is GoogleTest and Eigen, which every test includes; precompiled once, they load in a
+# fraction of a second (8.9 s -> 5.8 s). The first test program builds it, the others reuse it:
+# all test programs compile with the same flags. A test file must still include what it uses:
+# the header only saves the parse. With ccache, set its sloppiness to pch_defines,time_macros
+# (docs/testing.md).
+option(LOOKOUT_TEST_PCH "Precompile GoogleTest and Eigen for the test programs" ON)
+set(LOOKOUT_TEST_PCH_OWNER "" CACHE INTERNAL "The test program whose precompiled header the others reuse")
+function(lookout_test_pch target)
+  if(NOT LOOKOUT_TEST_PCH)
+    return()
+  endif()
+  if(LOOKOUT_TEST_PCH_OWNER STREQUAL "" OR LOOKOUT_TEST_PCH_OWNER STREQUAL target)
+    target_precompile_headers(${target} PRIVATE <gtest/gtest.h> <Eigen/Dense> <cmath> <limits>
+                              <string> <vector> <algorithm>)
+    set(LOOKOUT_TEST_PCH_OWNER ${target} CACHE INTERNAL "")
+  else()
+    target_precompile_headers(${target} REUSE_FROM ${LOOKOUT_TEST_PCH_OWNER})
+  endif()
+endfunction()
+
 function(lookout_module name)
   cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS;EXCLUDE;EXTRA_SOURCES" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
@@ -45,6 +67,7 @@ function(lookout_module name)
       endif()
     endforeach()
     lookout_apply_flags(lookout_${name}_test)
+    lookout_test_pch(lookout_${name}_test)
     # Suites named Catalogue* run catalogue scenarios end to end: label `catalogue`, which the
     # sanitizer run of scripts/test leaves out.
     gtest_discover_tests(lookout_${name}_test DISCOVERY_TIMEOUT 60 TEST_FILTER "-Catalogue*"
