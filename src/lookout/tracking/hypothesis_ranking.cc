@@ -2,7 +2,6 @@
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <cassert>
 #include <cstdint>
 #include <numeric>
 #include <queue>
