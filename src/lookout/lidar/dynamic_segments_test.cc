@@ -6,34 +6,21 @@
 #include <vector>
 
 #include "lookout/core/input_error.h"
-#include "lookout/sim/raycast.h"
+#include "lookout/lidar/cast_scan_for_tests.h"
 #include "lookout/sim/shapes.h"
 
 namespace lookout::lidar {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
-
 // A car 10 m ahead (its rear faces the lidar) in front of a long wall at x = 29.85 m, cast
-// exactly over 160 degrees at 0.25 degrees from the origin.
+// exactly over 160 degrees at 0.25 degrees from the origin (testing::CastScan).
 LidarScan CarBeforeWall() {
   const int s = sim::kStaticOwner;
   const std::vector<sim::Shape> world = {
       sim::Shape::Box(Pose2(10.0, 3.0, 0.0), 4.5, 1.8, s),
       sim::Shape::Box(Pose2(30.0, -5.0, 0.0), 0.3, 40.0, s),
   };
-  LidarScan scan;
-  scan.angle_min_rad = -80.0 * kDeg;
-  scan.angle_increment_rad = 0.25 * kDeg;
-  scan.max_range_m = 80.0;
-  sim::Fan fan;
-  fan.angle_min_rad = scan.angle_min_rad;
-  fan.angle_increment_rad = scan.angle_increment_rad;
-  fan.count = 641;
-  fan.max_range_m = scan.max_range_m;
-  const sim::FanHits hits = sim::CastFan(fan, world, {}, 0);
-  for (double r : hits.range_m) scan.ranges_m.push_back(static_cast<float>(r));
-  return scan;
+  return testing::CastScan(world);
 }
 
 struct Scene {

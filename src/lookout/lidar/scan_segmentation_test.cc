@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lookout/core/input_error.h"
+#include "lookout/lidar/cast_scan_for_tests.h"
 #include "lookout/sim/raycast.h"
 #include "lookout/sim/shapes.h"
 
@@ -16,22 +17,7 @@ namespace {
 
 constexpr double kDeg = kPi / 180.0;
 
-// A 160-degree scan at 0.25 degrees from the vehicle's origin (mount at the origin), cast
-// exactly (no noise) against `world`.
-LidarScan CastScan(const std::vector<sim::Shape>& world) {
-  LidarScan scan;
-  scan.angle_min_rad = -80.0 * kDeg;
-  scan.angle_increment_rad = 0.25 * kDeg;
-  scan.max_range_m = 80.0;
-  sim::Fan fan;
-  fan.angle_min_rad = scan.angle_min_rad;
-  fan.angle_increment_rad = scan.angle_increment_rad;
-  fan.count = 641;
-  fan.max_range_m = scan.max_range_m;
-  const sim::FanHits hits = sim::CastFan(fan, world, {}, 0);
-  for (double r : hits.range_m) scan.ranges_m.push_back(static_cast<float>(r));
-  return scan;
-}
+using testing::CastScan;
 
 // Two boxes (a car seen on its rear and its side, a van turned), a wall and a pole.
 std::vector<sim::Shape> Scene() {
