@@ -172,7 +172,7 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
   const std::string recording = (std::filesystem::path(out_dir) / "recording.mcap").string();
   const std::string metrics_path = (std::filesystem::path(out_dir) / "metrics.json").string();
 
-  Pipeline pipeline(pipeline_options);
+  Pipeline pipeline(ForSensors(pipeline_options, scenario.sensors));
   RunOptions options;
   options.threads = threads;
   options.recording_path = recording;
@@ -199,7 +199,7 @@ int Eval(const std::vector<std::string>& paths, const std::string& json_path, in
   std::vector<eval::ScenarioMetrics> results;
   json list = json::array();
   for (const sim::Scenario& s : scenarios) {
-    Pipeline pipeline(pipeline_options);
+    Pipeline pipeline(ForSensors(pipeline_options, s.sensors));
     RunOptions options;
     options.threads = threads;
     const RunResult r = RunScenario(s, pipeline, options);

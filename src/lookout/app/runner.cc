@@ -255,4 +255,10 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
   return result;
 }
 
+PipelineOptions ForSensors(PipelineOptions options, const sim::Sensors& sensors) {
+  options.tracking_options.detections.camera_fov_rad = sensors.stereo.fov_rad;
+  options.tracking_options.detections.camera_max_depth_m = sensors.stereo.max_depth_m;
+  return options;
+}
+
 }  // namespace lookout::app

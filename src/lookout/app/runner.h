@@ -59,4 +59,9 @@ struct RunResult {
 
 RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options);
 
+// `options` with what a scenario's sensor block says that the stages assume: the camera's field
+// of view and depth, inside which the tracking stage counts the camera's silence against a
+// lidar-only object (DetectionOptions). Pure.
+PipelineOptions ForSensors(PipelineOptions options, const sim::Sensors& sensors);
+
 }  // namespace lookout::app

@@ -129,5 +129,23 @@ TEST(RunnerTest, TracksTheChildAndWarnsByTheDeadline) {
   EXPECT_GT(m.at("tracking.recall"), 0.8) << "the child is tracked while in view";
 }
 
+TEST(RunnerTest, TheTrackingStageTakesTheCameraOfTheScenariosSensorBlock) {
+  const sim::Scenario scenario = io::LoadScenarioText(R"(
+format: 1
+name: narrow-camera
+duration: 1.0
+ego: {path: [[0, 0], [10, 0]], speed_profile: [[0, 0.0]]}
+sensors:
+  stereo: {fov_deg: 50, max_depth: 20}
+)",
+                                                      "narrow-camera.yaml");
+  const DetectionOptions defaults;
+  const DetectionOptions d = ForSensors(PipelineOptions{}, scenario.sensors).tracking_options.detections;
+  EXPECT_NEAR(d.camera_fov_rad, 50.0 * kPi / 180.0, 1e-12);
+  EXPECT_DOUBLE_EQ(d.camera_max_depth_m, 20.0);
+  EXPECT_NE(d.camera_fov_rad, defaults.camera_fov_rad);
+  EXPECT_NE(d.camera_max_depth_m, defaults.camera_max_depth_m);
+}
+
 }  // namespace
 }  // namespace lookout::app

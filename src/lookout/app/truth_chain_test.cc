@@ -24,6 +24,7 @@
 
 #include "lookout/app/risk_scoring.h"
 #include "lookout/app/risk_stage.h"
+#include "lookout/app/runner.h"
 #include "lookout/app/tracking_scoring.h"
 #include "lookout/app/tracking_stage.h"
 #include "lookout/core/random.h"
@@ -91,7 +92,7 @@ std::map<std::string, double> RunOnTruth(const std::string& name) {
   const sim::StereoOptions& s = scenario.sensors.stereo;
   const Pose2 camera_mount(s.x_m, s.y_m, s.yaw_rad);
 
-  TrackingStage tracking;
+  TrackingStage tracking(ForSensors(PipelineOptions{}, scenario.sensors).tracking_options);
   RiskStage risk;
   risk.SetRoute(scenario.ego.path);
   std::vector<std::pair<std::string, double>> contacts;
