@@ -65,6 +65,10 @@ void Pipeline::SetEgoRoute(std::vector<Eigen::Vector2d> route_m) {
   if (risk_) risk_->SetRoute(std::move(route_m));
 }
 
+void Pipeline::SetCarriageways(risk::Carriageways roads_m) {
+  if (risk_) risk_->SetCarriageways(std::move(roads_m));
+}
+
 void Pipeline::OnOdometry(const EgoOdometry& odometry) {
   for (const auto& stage : stages_) stage->OnOdometry(odometry);
   if (risk_) risk_->OnOdometry(odometry);

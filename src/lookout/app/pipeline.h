@@ -95,6 +95,9 @@ class Pipeline {
   const RiskStage* risk() const { return risk_ ? &*risk_ : nullptr; }
   // The ego's intended route, odometry frame (RiskStage::SetRoute); ignored without risk.
   void SetEgoRoute(std::vector<Eigen::Vector2d> route_m);
+  // The carriageways of the ego's map, odometry frame (RiskStage::SetCarriageways); ignored
+  // without risk.
+  void SetCarriageways(risk::Carriageways roads_m);
 
   void OnOdometry(const EgoOdometry& odometry);
   void OnStereo(const StereoFrame& frame);

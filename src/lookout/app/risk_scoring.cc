@@ -24,7 +24,8 @@ int MaxLevel(const std::vector<risk::WarningEvent>& events) {
 }  // namespace
 
 risk::RiskAssessment TrueAssessment(const sim::TruthFrame& truth, const RiskStageOptions& options,
-                                    const std::vector<Eigen::Vector2d>& route_world) {
+                                    const std::vector<Eigen::Vector2d>& route_world,
+                                    const risk::Carriageways& carriageways_world) {
   risk::EgoInput ego;
   const sim::KinematicState& e = truth.ego.state;
   ego.position_m = e.pose.translation;
@@ -33,6 +34,7 @@ risk::RiskAssessment TrueAssessment(const sim::TruthFrame& truth, const RiskStag
   ego.acceleration_mps2 = e.acceleration_mps2;
   ego.yaw_rate_radps = e.yaw_rate_radps;
   if (options.ego_prediction == EgoPrediction::kRoute) ego.route_m = route_world;
+  ego.carriageways_m = carriageways_world;
   std::vector<risk::ObjectInput> objects;
   objects.reserve(truth.actors.size());
   for (const sim::ActorTruth& a : truth.actors) {
@@ -49,12 +51,14 @@ risk::RiskAssessment TrueAssessment(const sim::TruthFrame& truth, const RiskStag
 }
 
 RiskScorer::RiskScorer(const Pose2& world_from_odom, const RiskStageOptions& options,
-                       std::vector<Eigen::Vector2d> route_world, sim::Expectation expectation,
+                       std::vector<Eigen::Vector2d> route_world,
+                       risk::Carriageways carriageways_world, sim::Expectation expectation,
                        std::vector<std::pair<std::string, double>> contacts,
                        const RiskScoringOptions& scoring)
     : world_from_odom_(world_from_odom),
       options_(options),
       route_world_(std::move(route_world)),
+      carriageways_world_(std::move(carriageways_world)),
       expectation_(expectation),
       contacts_(std::move(contacts)),
       scoring_(scoring),
@@ -62,7 +66,7 @@ RiskScorer::RiskScorer(const Pose2& world_from_odom, const RiskStageOptions& opt
 
 void RiskScorer::Observe(const sim::TruthFrame& truth, const std::vector<tracking::Track>& tracks,
                          const risk::RiskAssessment& assessment) {
-  const risk::RiskAssessment ideal = TrueAssessment(truth, options_, route_world_);
+  const risk::RiskAssessment ideal = TrueAssessment(truth, options_, route_world_, carriageways_world_);
   ideal_.Update(truth.stamp, ideal);
 
   for (std::size_t i = 0; i < truth.actors.size(); ++i) {

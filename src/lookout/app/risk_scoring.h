@@ -45,16 +45,18 @@ struct RiskScoringOptions {
 
 // The risk of each actor of `truth` (objects indexed as truth.actors) under `options`'
 // prediction, from the true states (poses, velocities, no covariance), the ego along
-// `route_world` when the options predict along a route. Pure.
+// `route_world` when the options predict along a route, with the map's `carriageways_world`.
+// Pure.
 risk::RiskAssessment TrueAssessment(const sim::TruthFrame& truth, const RiskStageOptions& options,
-                                    const std::vector<Eigen::Vector2d>& route_world);
+                                    const std::vector<Eigen::Vector2d>& route_world,
+                                    const risk::Carriageways& carriageways_world = {});
 
 class RiskScorer {
  public:
   // `contacts`: the simulator's true contacts (actor id, scenario time).
   RiskScorer(const Pose2& world_from_odom, const RiskStageOptions& options,
-             std::vector<Eigen::Vector2d> route_world, sim::Expectation expectation,
-             std::vector<std::pair<std::string, double>> contacts,
+             std::vector<Eigen::Vector2d> route_world, risk::Carriageways carriageways_world,
+             sim::Expectation expectation, std::vector<std::pair<std::string, double>> contacts,
              const RiskScoringOptions& scoring = {});
 
   // After a cycle in which the risk stage ran: the truth at its stamp, the tracks it assessed
@@ -70,6 +72,7 @@ class RiskScorer {
   Pose2 world_from_odom_;
   RiskStageOptions options_;
   std::vector<Eigen::Vector2d> route_world_;
+  risk::Carriageways carriageways_world_;
   sim::Expectation expectation_;
   std::vector<std::pair<std::string, double>> contacts_;
   RiskScoringOptions scoring_;

@@ -107,6 +107,10 @@ void RiskStage::SetRoute(std::vector<Eigen::Vector2d> route_m) {
   route_ = std::move(route_m);
 }
 
+void RiskStage::SetCarriageways(risk::Carriageways roads_m) {
+  carriageways_ = std::move(roads_m);
+}
+
 void RiskStage::Step(TimeNs stamp, const Pose2& ego_pose,
                      const std::vector<tracking::Track>& tracks) {
   if (last_stamp_ && stamp <= *last_stamp_) {
@@ -116,6 +120,7 @@ void RiskStage::Step(TimeNs stamp, const Pose2& ego_pose,
   const Clock::time_point start = Clock::now();
   ego_ = InterpretEgo(stamp, ego_pose, odometry_, options_.acceleration_window_s);
   if (options_.ego_prediction == EgoPrediction::kRoute) ego_.route_m = route_;
+  ego_.carriageways_m = carriageways_;
   assessment_ = risk::AssessRisk(ego_, InterpretTracks(tracks), options_.risk);
   dropped_ += static_cast<std::int64_t>(assessment_.dropped);
   warnings_.Update(stamp, assessment_);

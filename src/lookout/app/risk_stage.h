@@ -65,6 +65,8 @@ class RiskStage {
   void OnOdometry(const EgoOdometry& odometry);
   // The ego's intended route in the odometry frame (empty: none). Points must be finite.
   void SetRoute(std::vector<Eigen::Vector2d> route_m);
+  // The carriageways of the ego's map in the odometry frame (empty: none).
+  void SetCarriageways(risk::Carriageways roads_m);
 
   // One cycle at `stamp`: the ego's pose (odometry frame) and the confirmed tracks. A stamp not
   // after the previous one's is ignored (nothing changes; counted).
@@ -86,6 +88,7 @@ class RiskStage {
   RiskStageOptions options_;
   std::deque<EgoOdometry> odometry_;
   std::vector<Eigen::Vector2d> route_;
+  risk::Carriageways carriageways_;
   risk::WarningState warnings_;
   risk::EgoInput ego_;
   risk::RiskAssessment assessment_;

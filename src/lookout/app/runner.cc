@@ -21,6 +21,7 @@
 #include "lookout/io/grid_images.h"
 #include "lookout/io/png_writer.h"
 #include "lookout/sim/simulator.h"
+#include "lookout/sim/world_builder.h"
 
 namespace lookout::app {
 namespace {
@@ -93,6 +94,7 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
     route_odom.push_back(world_from_odom.Inverse() * p);
   }
   pipeline.SetEgoRoute(route_odom);
+  pipeline.SetCarriageways(CarriagewaysOf(scenario.world, world_from_odom.Inverse()));
   std::optional<TrackingScorer> tracking_scorer;
   if (pipeline.tracking()) {
     const grid::GridOptions grid_options;
@@ -103,7 +105,8 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   std::optional<RiskScorer> risk_scorer;
   if (pipeline.risk()) {
     risk_scorer.emplace(world_from_odom, pipeline.risk()->options(), scenario.ego.path,
-                        scenario.expect, result.contacts);
+                        CarriagewaysOf(scenario.world, Pose2{}), scenario.expect,
+                        result.contacts);
   }
   std::map<std::uint32_t, ObjectClass> warned_classes;  // track id -> class, for the summary
   bool snapshot_due = options.snapshot_s.has_value() && pipeline.grid() != nullptr;
@@ -253,6 +256,15 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
   RunResult result;
   arena.execute([&] { result = RunInArena(scenario, pipeline, options); });
   return result;
+}
+
+risk::Carriageways CarriagewaysOf(const sim::World& world, const Pose2& frame_from_world) {
+  if (!world.preset) return {};
+  const double length = 2.0 * sim::kFourWayBlockExtentM;
+  const double width = 2.0 * sim::kFourWayRoadHalfWidthM;
+  const Eigen::Vector2d centre = frame_from_world * Eigen::Vector2d::Zero();
+  return {risk::Footprint::Box(centre, frame_from_world.yaw, length, width),
+          risk::Footprint::Box(centre, frame_from_world.yaw + 0.5 * kPi, length, width)};
 }
 
 PipelineOptions ForSensors(PipelineOptions options, const sim::Sensors& sensors) {

@@ -64,4 +64,9 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
 // lidar-only object (DetectionOptions). Pure.
 PipelineOptions ForSensors(PipelineOptions options, const sim::Sensors& sensors);
 
+// The carriageways of a scenario's world as the ego's map holds them, in the frame that
+// `frame_from_world` maps the world into: the four_way preset's two roads (sim/world_builder.h);
+// none for empty ground. Pure.
+risk::Carriageways CarriagewaysOf(const sim::World& world, const Pose2& frame_from_world);
+
 }  // namespace lookout::app

@@ -147,5 +147,26 @@ sensors:
   EXPECT_NE(d.camera_max_depth_m, defaults.camera_max_depth_m);
 }
 
+// The four_way preset's two roads as the ego's map, in a frame turned and moved from the
+// world's: the ego's lane and the junction are on them, the sidewalks and the blocks are not;
+// empty ground has no map.
+TEST(RunnerTest, TheFourWayWorldGivesTheMapItsTwoCarriageways) {
+  sim::World world;
+  world.preset = "four_way";
+  const Pose2 frame_from_world(3.0, -2.0, 0.7);
+  const risk::Carriageways roads = CarriagewaysOf(world, frame_from_world);
+  ASSERT_EQ(roads.size(), 2u);
+  const auto on = [&](double x, double y) {
+    return risk::OnCarriageway(roads, frame_from_world * Eigen::Vector2d(x, y));
+  };
+  EXPECT_TRUE(on(-40.0, -1.75)) << "the ego's lane on the east-west road";
+  EXPECT_TRUE(on(1.75, 30.0)) << "the north-south road";
+  EXPECT_TRUE(on(0.0, 0.0)) << "the junction";
+  EXPECT_FALSE(on(-5.3, -7.0)) << "the south-west sidewalk";
+  EXPECT_FALSE(on(-20.0, -4.0)) << "the south sidewalk of the east-west road";
+  EXPECT_FALSE(on(10.0, 10.0)) << "the north-east block";
+  EXPECT_TRUE(CarriagewaysOf(sim::World{}, frame_from_world).empty());
+}
+
 }  // namespace
 }  // namespace lookout::app

@@ -95,6 +95,7 @@ std::map<std::string, double> RunOnTruth(const std::string& name) {
   TrackingStage tracking(ForSensors(PipelineOptions{}, scenario.sensors).tracking_options);
   RiskStage risk;
   risk.SetRoute(scenario.ego.path);
+  risk.SetCarriageways(CarriagewaysOf(scenario.world, Pose2{}));
   std::vector<std::pair<std::string, double>> contacts;
   for (std::size_t i = 0; i < scenario.actors.size(); ++i) {
     if (const auto& t = simulator.contact_times_s()[i]) {
@@ -102,7 +103,8 @@ std::map<std::string, double> RunOnTruth(const std::string& name) {
     }
   }
   TrackingScorer tracking_scorer(Pose2{}, reach);
-  RiskScorer risk_scorer(Pose2{}, risk.options(), scenario.ego.path, scenario.expect, contacts);
+  RiskScorer risk_scorer(Pose2{}, risk.options(), scenario.ego.path,
+                         CarriagewaysOf(scenario.world, Pose2{}), scenario.expect, contacts);
   Rng rng(DeriveSeed(scenario.seed, "truth_chain_test", 0));
   std::size_t next_odometry = 0;
   for (const sim::TruthFrame& truth : log.truth) {

@@ -192,6 +192,10 @@ RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& o
       r.collision_probability = CollisionProbability(
           ego_track, PredictObject(object, options, /*covariance_margin=*/false), options.step_s,
           sampling, normals);
+      if (object.object_class == ObjectClass::kPedestrian && !ego.carriageways_m.empty() &&
+          !OnCarriageway(ego.carriageways_m, object.position_m)) {
+        r.collision_probability *= options.kerb_step_off_probability;
+      }
     }
     out.objects.push_back(r);
     const std::size_t i = out.objects.size() - 1;

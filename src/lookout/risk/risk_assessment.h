@@ -16,7 +16,9 @@
 //      (risk_indicators.h). The probability samples the track's position and velocity
 //      covariances, and for pedestrians also the velocities a walker may choose
 //      (pedestrian_intent_sigma_mps): where the paper's growing circle says "anywhere within
-//      speed x t", the samples say how likely each place is.
+//      speed x t", the samples say how likely each place is. A pedestrian off the carriageways
+//      of the ego's map may wait at the kerb: its probability is weighted by the chance that it
+//      steps off (carriageway.h).
 //
 // The risk indicator (the paper's Fig. 7, whose curve the text does not state; Lookout's
 // reading): 1 when the TTC is at most the total reaction time (2 s: nothing the driver starts
@@ -29,6 +31,7 @@
 #include <vector>
 
 #include "lookout/core/object_class.h"
+#include "lookout/risk/carriageway.h"
 #include "lookout/risk/collision.h"
 #include "lookout/risk/risk_options.h"
 
@@ -44,6 +47,9 @@ struct EgoInput {
   // The intended route (route_prediction.h), in the same frame; empty: none known, the ego is
   // predicted from its state by the bicycle model.
   std::vector<Eigen::Vector2d> route_m;
+  // The carriageways of the ego's map (carriageway.h), in the same frame; empty: none known,
+  // every walker is left to its state.
+  Carriageways carriageways_m;
 };
 
 // A tracked object in the same frame.

@@ -244,5 +244,43 @@ TEST(RiskAssessmentTest, AWalkerPassingAWaitingCarIsNoWarning) {
   EXPECT_EQ(AssessRisk(ego, {passing}, rigid).objects[0].collision_probability, 0.0);
 }
 
+// A walker on the sidewalk heading into the ego's lane: with the map, its collision
+// probability is weighted by the chance that it steps off the kerb; a walker the map puts on
+// the road, and a car where the walker is, keep theirs; the TTC (the likeliest future's) is the
+// same with the map and without.
+TEST(RiskAssessmentTest, AWalkerOnTheSidewalkMayWaitAtTheKerb) {
+  const RiskOptions o;  // sampling on, kerb_step_off_probability 0.5
+  EgoInput ego;         // at the origin, east at 8 m/s
+  ego.speed_mps = 8.0;
+  ObjectInput walker = Object(ObjectClass::kPedestrian, {20.0, -4.5}, {0.0, 1.5});
+  walker.position_covariance = 0.01 * Eigen::Matrix2d::Identity();
+  walker.velocity_covariance = 0.01 * Eigen::Matrix2d::Identity();
+  const RiskAssessment free = AssessRisk(ego, {walker}, o);
+  ASSERT_EQ(free.objects.size(), 1u);
+  ASSERT_TRUE(free.objects[0].ttc_s);
+  ASSERT_GT(free.objects[0].collision_probability, 0.5) << "without a map it would warn";
+
+  EgoInput mapped = ego;
+  mapped.carriageways_m = {Footprint::Box({0.0, 0.0}, 0.0, 200.0, 7.0)};  // kerbs at y = +-3.5
+  const RiskAssessment kerb = AssessRisk(mapped, {walker}, o);
+  EXPECT_DOUBLE_EQ(kerb.objects[0].collision_probability,
+                   o.kerb_step_off_probability * free.objects[0].collision_probability);
+  EXPECT_EQ(kerb.objects[0].ttc_s, free.objects[0].ttc_s);
+
+  EgoInput wide = ego;  // a road 10 m wide: the walker is on it
+  wide.carriageways_m = {Footprint::Box({0.0, 0.0}, 0.0, 200.0, 10.0)};
+  EXPECT_DOUBLE_EQ(AssessRisk(wide, {walker}, o).objects[0].collision_probability,
+                   free.objects[0].collision_probability);
+
+  ObjectInput car = walker;
+  car.object_class = ObjectClass::kCar;
+  EXPECT_DOUBLE_EQ(AssessRisk(mapped, {car}, o).objects[0].collision_probability,
+                   AssessRisk(ego, {car}, o).objects[0].collision_probability);
+
+  RiskOptions bad;
+  bad.kerb_step_off_probability = 1.5;
+  EXPECT_THROW(bad.Validate(), InputError);
+}
+
 }  // namespace
 }  // namespace lookout::risk

@@ -67,6 +67,8 @@ void RiskOptions::Validate(const std::string& source) const {
           "must be >= 0");
   Require(NonNegative(pedestrian_intent_sigma_mps), source, "pedestrian_intent_sigma_mps",
           "must be >= 0");
+  Require(kerb_step_off_probability >= 0.0 && kerb_step_off_probability <= 1.0, source,
+          "kerb_step_off_probability", "must be in [0, 1]");
   Require(collision_samples >= 0 && collision_samples <= 1000000, source, "collision_samples",
           "must be in [0, 10^6]");
   Require(Positive(reaction_time_s) && reaction_time_s < horizon_s, source, "reaction_time_s",

@@ -71,6 +71,12 @@ struct RiskOptions {
   // speed and its direction: a fifth of a typical 1.4 m/s walking speed), added to the track's
   // velocity covariance when sampling; pedestrians and unknown objects.
   double pedestrian_intent_sigma_mps = 0.3;
+  // A pedestrian off every carriageway of the ego's map (carriageway.h) steps onto the road in
+  // this share of its futures and waits at the kerb in the others: its collision probability is
+  // weighted by it (the collision is on the road). 0.5: nothing in a walker's track says which,
+  // so a walker still on the sidewalk reaches the warning's probability (0.5) only if every
+  // sampled crossing future hits. 1 leaves the walker to its state, as the paper does.
+  double kerb_step_off_probability = 0.5;
 
   // Collision probability (risk_indicators.h): samples per object, 0 to skip, and the seed of
   // the draws (one set per step, shared by the objects: the same tracks give the same
