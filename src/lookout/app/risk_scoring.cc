@@ -66,7 +66,8 @@ RiskScorer::RiskScorer(const Pose2& world_from_odom, const RiskStageOptions& opt
 
 void RiskScorer::Observe(const sim::TruthFrame& truth, const std::vector<tracking::Track>& tracks,
                          const risk::RiskAssessment& assessment) {
-  const risk::RiskAssessment ideal = TrueAssessment(truth, options_, route_world_, carriageways_world_);
+  const risk::RiskAssessment ideal =
+      TrueAssessment(truth, options_, route_world_, carriageways_world_);
   ideal_.Update(truth.stamp, ideal);
 
   for (std::size_t i = 0; i < truth.actors.size(); ++i) {

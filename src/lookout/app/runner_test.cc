@@ -140,7 +140,8 @@ sensors:
 )",
                                                       "narrow-camera.yaml");
   const DetectionOptions defaults;
-  const DetectionOptions d = ForSensors(PipelineOptions{}, scenario.sensors).tracking_options.detections;
+  const DetectionOptions d =
+      ForSensors(PipelineOptions{}, scenario.sensors).tracking_options.detections;
   EXPECT_NEAR(d.camera_fov_rad, 50.0 * kPi / 180.0, 1e-12);
   EXPECT_DOUBLE_EQ(d.camera_max_depth_m, 20.0);
   EXPECT_NE(d.camera_fov_rad, defaults.camera_fov_rad);
