@@ -227,7 +227,15 @@ class ParamReader {
       fov = DegToRad(*resolution) * static_cast<double>(n - 1);
       key = resolution_key;
     }
-    if (!fov) return kPi;
+    if (!fov) {
+      // No parameter: the resolution the SICK scanners of these logs run at, known by the beam
+      // count as CARMEN's own tools know it (1 deg for 180 or 181 beams, 0.5 deg for 360 or
+      // 361). 180 beams are 1 deg apart and span 179 deg, not 180: spread over 180 deg, a scan
+      // is stretched by 0.56 % and a wall at the side turns by up to 0.5 deg.
+      if (n == 180 || n == 181) return DegToRad(1.0) * static_cast<double>(n - 1);
+      if (n == 360 || n == 361) return DegToRad(0.5) * static_cast<double>(n - 1);
+      return kPi;
+    }
     if (!(*fov > 0.0 && *fov <= 2.0 * kPi)) {
       Refuse(key, fmt::format("gives a field of view of {} rad for {} beams, not in (0, 2 pi]",
                               *fov, n));

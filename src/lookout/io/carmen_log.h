@@ -56,13 +56,14 @@
 // return" as a saturated code (50, 51.15, 81.91, 32.767 m in the Radish logs) and the logs'
 // PARAM robot_front_laser_max is not reliable (edmonton says 10 m and has 4000 readings beyond).
 // FLASER beams span the laser's field of view centred on its x axis: -fov/2 .. +fov/2 in n - 1
-// steps (180 beams: -90..+90 deg). fov is PARAM laser_front_laser_fov when present (degrees, or
-// radians when at most 2 pi: csail writes 3.14159), else laser_front_laser_resolution (degrees)
-// * (n - 1), else 180 deg. RLASER: the same with laser_rear_laser_*; the rear laser looks
-// backwards, as CARMEN mounts it: mount (-robot_rearlaser_offset, 0, pi). FLASER mount:
-// (robot_frontlaser_offset, 0, 0). A PARAM given twice (belgioioso) takes its last value.
-// ROBOTLASER1 carries its own start angle, resolution and range, and its mount is
-// robot_pose^-1 * laser_pose.
+// steps. fov is PARAM laser_front_laser_fov when present (degrees, or radians when at most
+// 2 pi: csail writes 3.14159), else laser_front_laser_resolution (degrees) * (n - 1), else the
+// scanner's resolution by the beam count as CARMEN's tools read these logs (1 deg for 180 or
+// 181 beams, 0.5 deg for 360 or 361: 180 beams span -89.5..+89.5 deg), else 180 deg. RLASER:
+// the same with laser_rear_laser_*; the rear laser looks backwards, as CARMEN mounts it: mount
+// (-robot_rearlaser_offset, 0, pi). FLASER mount: (robot_frontlaser_offset, 0, 0). A PARAM
+// given twice (belgioioso) takes its last value. ROBOTLASER1 carries its own start angle,
+// resolution and range, and its mount is robot_pose^-1 * laser_pose.
 //
 // Bad input: a malformed line (missing or non-numeric field, a non-finite pose or time, a time
 // beyond +-9.2e9 s, which TimeNs cannot hold, a coordinate beyond +-1e7 m) is skipped and counted,

@@ -175,8 +175,10 @@ TEST(CarmenLogTest, FrontLaserGeometryFollowsRep117) {
   const CarmenLog log = ParseCarmenLog(text, "beams.log");
   ASSERT_EQ(log.ScanCount(), 1u);
   const LidarScan& scan = *log.records[0].scan;
-  EXPECT_DOUBLE_EQ(scan.angle_min_rad, -kPi / 2);
-  EXPECT_NEAR(scan.BeamAngle(179), kPi / 2, 1e-12);
+  // 180 beams without a parameter: 1 deg apart (the scanner's resolution), -89.5 .. +89.5 deg.
+  EXPECT_NEAR(scan.angle_min_rad, DegToRad(-89.5), 1e-12);
+  EXPECT_NEAR(scan.angle_increment_rad, DegToRad(1.0), 1e-12);
+  EXPECT_NEAR(scan.BeamAngle(179), DegToRad(89.5), 1e-12);
   EXPECT_EQ(scan.stamp, 12'500'000'000);
   EXPECT_TRUE(std::isnan(scan.ranges_m[0]));                            // negative
   EXPECT_TRUE(std::isnan(scan.ranges_m[1]));                            // NaN
@@ -224,6 +226,15 @@ TEST(CarmenLogTest, FieldOfViewAndMountComeFromParams) {
         "PARAM laser_front_laser_resolution 0.5 nohost 0\n" + FlaserOfBeams(361), "res.log");
     EXPECT_NEAR(log.records.at(0).scan->angle_min_rad, -kPi / 2, 1e-12);
     EXPECT_NEAR(log.records.at(0).scan->angle_increment_rad, DegToRad(0.5), 1e-12);
+  }
+  // Without a parameter, the resolution by the beam count as CARMEN's tools read these logs:
+  // 1 deg for 180 and 181 beams, 0.5 deg for 360 and 361, else 180 deg over the beams.
+  for (const auto& [beams, step_deg] : std::vector<std::pair<int, double>>{
+           {180, 1.0}, {181, 1.0}, {360, 0.5}, {361, 0.5}, {91, 2.0}}) {
+    const CarmenLog log = ParseCarmenLog(FlaserOfBeams(beams), "count.log");
+    const LidarScan& scan = *log.records.at(0).scan;
+    EXPECT_NEAR(scan.angle_increment_rad, DegToRad(step_deg), 1e-12) << beams << " beams";
+    EXPECT_NEAR(scan.angle_min_rad, -0.5 * DegToRad(step_deg) * (beams - 1), 1e-12) << beams;
   }
 }
 
