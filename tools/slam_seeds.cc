@@ -2,7 +2,7 @@
 //
 // How `lookout slam`'s figure moves with the seed of the particle filter: each CARMEN log is
 // localised once per seed (the same run as `lookout slam LOG --seed S`), and its ATE against the
-// log's corrected poses printed per seed, with the worst and the mean, and the processor time's
+// log's corrected poses printed per seed, with the median, the worst and the mean, and the processor time's
 // real-time factor. A Markdown table on stdout (docs/lidar-slam.md, "Seeds").
 //
 // --set changes one option of the localisation for the run (the names of slam_options.h,
@@ -43,6 +43,7 @@ std::map<std::string, std::function<void(SlamOptions&, double)>> Settable() {
   std::map<std::string, std::function<void(SlamOptions&, double)>> m;
   m["filter.particle_count"] = [](SlamOptions& o, double v) { o.filter.particle_count = static_cast<int>(v); };
   m["filter.particle_refine_iterations"] = [](SlamOptions& o, double v) { o.filter.particle_refine_iterations = static_cast<int>(v); };
+  m["filter.refine_with_prior"] = [](SlamOptions& o, double v) { o.filter.refine_with_prior = v != 0.0; };
   m["filter.resample_ess_share"] = [](SlamOptions& o, double v) { o.filter.resample_ess_share = v; };
   m["matcher.point_spacing_m"] = [](SlamOptions& o, double v) { o.matcher.point_spacing_m = v; };
   m["matcher.max_points"] = [](SlamOptions& o, double v) { o.matcher.max_points = static_cast<int>(v); };
@@ -165,12 +166,13 @@ int main(int argc, char** argv) {
       header += fmt::format(" seed {} |", s);
       rule += "---:|";
     }
-    std::printf("%s worst | mean | real time (processor) |\n%s---:|---:|---:|\n", header.c_str(), rule.c_str());
+    std::printf("%s median | worst | mean | real time (processor) |\n%s---:|---:|---:|---:|\n", header.c_str(), rule.c_str());
     for (const std::string& path : logs) {
       const lookout::io::CarmenLog log = lookout::io::ReadCarmenLog(path);
       const std::vector<lookout::lidar::SlamRecord> records = lookout::app::SlamRecordsOf(log);
       std::string row = "| " + LogName(path) + " |";
       double worst = 0.0, sum = 0.0, cpu = 0.0;
+      std::vector<double> ates;
       std::string spans;
       for (int s = first_seed; s <= last_seed; ++s) {
         options.filter.seed = static_cast<std::uint64_t>(s);
@@ -181,12 +183,16 @@ int main(int argc, char** argv) {
         if (segments > 0 && s == first_seed) spans = Segments(log, result, segments);
         worst = std::max(worst, ate);
         sum += ate;
+        ates.push_back(ate);
         row += fmt::format(" {:.3f} |", ate);
         std::fflush(stdout);
       }
       const int n = last_seed - first_seed + 1;
       const double duration = log.records.back().t_s - log.records.front().t_s;
-      row += fmt::format(" {:.3f} | {:.3f} |", worst, sum / n);
+      std::sort(ates.begin(), ates.end());
+      const std::size_t mid = ates.size() / 2;
+      const double median = ates.size() % 2 == 1 ? ates[mid] : 0.5 * (ates[mid - 1] + ates[mid]);
+      row += fmt::format(" {:.3f} | {:.3f} | {:.3f} |", median, worst, sum / n);
       row += duration > 0.0 ? fmt::format(" {:.0f}x |", duration * n / cpu) : std::string(" - |");
       std::printf("%s\n%s", row.c_str(), spans.c_str());
       std::fflush(stdout);

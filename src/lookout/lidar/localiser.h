@@ -10,9 +10,9 @@
 //
 // Per scan, with N particles and B matching points:
 //   1. predict:  each particle samples the motion model on the odometry increment;
-//   2. match:    one correlative search and Gauss-Newton fit around the particles' weighted
-//                mean; every particle is moved by the correction it found (their spread is
-//                kept);
+//   2. match:    one correlative search and Gauss-Newton fit around the odometry's prediction
+//                of the last estimate; every particle is moved by the correction it found
+//                (their spread is kept);
 //   3. refine:   a few Gauss-Newton steps per particle on the likelihood field;
 //   4. weigh:    w_i *= p(scan | pose_i, map)^(matcher.effective_beams / B);
 //   5. resample: low-variance, when ESS < resample_ess_share N;
@@ -97,7 +97,8 @@ class LidarLocaliser final : public EgoPoseSource {
   };
   std::optional<Pose2> OdometryAt(TimeNs t) const;
   void Predict(const Pose2& increment);
-  void Correct(std::span<const Eigen::Vector2d> points, const Pose2& increment);
+  void Correct(std::span<const Eigen::Vector2d> points, const Pose2& increment,
+               const Pose2& predicted);
   void DropOldHistory(TimeNs newest);
 
   SlamOptions options_;
