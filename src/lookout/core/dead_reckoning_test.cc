@@ -16,15 +16,16 @@ namespace {
 // The textbook closed form, in long double: the reference the series must agree with.
 Pose2 ArcReference(const Pose2& start, double v, double w, double dt) {
   using LD = long double;
-  const LD th = start.yaw;
+  const auto ld = [](double value) { return static_cast<LD>(value); };
+  const LD th = ld(start.yaw), x = ld(start.x()), y = ld(start.y());
   if (w == 0.0) {
-    return Pose2(static_cast<double>(start.x() + LD{v} * dt * std::cos(th)),
-                 static_cast<double>(start.y() + LD{v} * dt * std::sin(th)), start.yaw);
+    return Pose2(static_cast<double>(x + ld(v) * ld(dt) * std::cos(th)),
+                 static_cast<double>(y + ld(v) * ld(dt) * std::sin(th)), start.yaw);
   }
-  const LD r = LD{v} / LD{w};
-  const LD th1 = th + LD{w} * LD{dt};
-  return Pose2(static_cast<double>(start.x() + r * (std::sin(th1) - std::sin(th))),
-               static_cast<double>(start.y() - r * (std::cos(th1) - std::cos(th))),
+  const LD r = ld(v) / ld(w);
+  const LD th1 = th + ld(w) * ld(dt);
+  return Pose2(static_cast<double>(x + r * (std::sin(th1) - std::sin(th))),
+               static_cast<double>(y - r * (std::cos(th1) - std::cos(th))),
                WrapAngle(static_cast<double>(th1)));
 }
 
@@ -255,8 +256,9 @@ TEST(DeadReckoningTest, CovarianceMatchesMonteCarloOfTheModel) {
   for (int s = 0; s < samples; ++s) {
     Pose2 p;
     for (TimeNs k = 0; k < readings; ++k) {
-      p = IntegrateArc(p, 10.0 + noise.speed_noise_mps * rng.Normal(),
-                       0.3 + noise.yaw_rate_noise_radps * rng.Normal(), 0.02);
+      const double speed_mps = 10.0 + noise.speed_noise_mps * rng.Normal();
+      const double yaw_rate_radps = 0.3 + noise.yaw_rate_noise_radps * rng.Normal();
+      p = IntegrateArc(p, speed_mps, yaw_rate_radps, 0.02);
     }
     ends.emplace_back(p.x(), p.y(), p.yaw);
     mean += ends.back();

@@ -384,7 +384,6 @@ TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
     const Eigen::Vector2d p = start + v * (k * kDtS);
     grid.Update(Measure(grid.geometry(), {BoxM{p.x(), p.y(), 0.45, 0.45}}), kDtS);
   }
-  const auto o = Layer(grid, grid.ids().occupancy);
   const double spread_before = MassSpreadM(grid);
   const Eigen::Vector2d seen_at = start + v * ((kSeen - 1) * kDtS) + half_size;
   const double mass_before = MassNear(grid, seen_at, 1.0);

@@ -127,7 +127,11 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
   const std::size_t n = points.size();
   o.point_count = static_cast<std::uint32_t>(n);
 
-  const auto [begin, end] = FrontSide(points, options);
+  // Not a structured binding: the lambda below captures both, which clang 14 does not allow of
+  // bindings (C++20 does; the sanitizer and fuzz builds use clang).
+  const std::pair<std::size_t, std::size_t> side = FrontSide(points, options);
+  const std::size_t begin = side.first;
+  const std::size_t end = side.second;
   const std::span<const Vector2d> front(points.data() + begin, end - begin);
   const Line line = FitLine(front);
   o.front_start_m = Project(line, front.front());

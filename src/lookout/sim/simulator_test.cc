@@ -215,7 +215,7 @@ TEST(SimulatorTest, LidarSeesAWallAtItsDistance) {
   for (int k = 0; k < 20; ++k) {
     const LidarScan scan = sim.SimulateLidar(k);
     for (std::size_t i = 300; i <= 340; ++i) {
-      const double r = scan.ranges_m[i];
+      const double r = static_cast<double>(scan.ranges_m[i]);
       if (!std::isfinite(r)) continue;  // a dropout
       const double expected = 17.8 / std::cos(scan.BeamAngle(i));
       sum += r - expected;
