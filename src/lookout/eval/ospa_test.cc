@@ -79,8 +79,8 @@ TEST(Ospa, MatchesBruteForceOnRandomSets) {
     Rng rng(seed);
     std::vector<Eigen::Vector2d> x, y;
     const std::size_t nx = rng.UniformIndex(5), ny = rng.UniformIndex(5);
-    for (std::size_t i = 0; i < nx; ++i) x.emplace_back(rng.Uniform(0, 8), rng.Uniform(0, 8));
-    for (std::size_t i = 0; i < ny; ++i) y.emplace_back(rng.Uniform(0, 8), rng.Uniform(0, 8));
+    for (std::size_t i = 0; i < nx; ++i) x.push_back({rng.Uniform(0, 8), rng.Uniform(0, 8)});
+    for (std::size_t i = 0; i < ny; ++i) y.push_back({rng.Uniform(0, 8), rng.Uniform(0, 8)});
     for (const double p : {1.0, 2.0, 3.0, kInf}) {
       const double c = 4.0;
       ASSERT_NEAR(Ospa(x, y, {c, p}), BruteForceOspa(x, y, c, p), 1e-9)
@@ -133,8 +133,8 @@ TEST(Gospa, MatchesBruteForceOnRandomSets) {
     Rng rng(seed);
     std::vector<Eigen::Vector2d> x, y;
     const std::size_t nx = rng.UniformIndex(5), ny = rng.UniformIndex(5);
-    for (std::size_t i = 0; i < nx; ++i) x.emplace_back(rng.Uniform(0, 8), rng.Uniform(0, 8));
-    for (std::size_t i = 0; i < ny; ++i) y.emplace_back(rng.Uniform(0, 8), rng.Uniform(0, 8));
+    for (std::size_t i = 0; i < nx; ++i) x.push_back({rng.Uniform(0, 8), rng.Uniform(0, 8)});
+    for (std::size_t i = 0; i < ny; ++i) y.push_back({rng.Uniform(0, 8), rng.Uniform(0, 8)});
     const double c = 3.0, p = 2.0;
     // Both minimise the same sum over the same assignments; OSPA charges c^p for each
     // unassigned element and divides by n, GOSPA (alpha = 2) charges c^p / 2:

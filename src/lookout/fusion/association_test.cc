@@ -68,10 +68,12 @@ TEST(AssociationTest, MatchesBruteForce) {
     const auto m = static_cast<std::size_t>(rng.UniformIndex(5));
     std::vector<stereo::CartesianPoint> stereo, lidar;
     for (std::size_t i = 0; i < n; ++i) {
-      stereo.push_back(Point(rng.Uniform(0, 6), rng.Uniform(0, 6), rng.Uniform(0.1, 1.0)));
+      const double x = rng.Uniform(0, 6), y = rng.Uniform(0, 6);
+      stereo.push_back(Point(x, y, rng.Uniform(0.1, 1.0)));
     }
     for (std::size_t j = 0; j < m; ++j) {
-      lidar.push_back(Point(rng.Uniform(0, 6), rng.Uniform(0, 6), rng.Uniform(0.01, 0.2)));
+      const double x = rng.Uniform(0, 6), y = rng.Uniform(0, 6);
+      lidar.push_back(Point(x, y, rng.Uniform(0.01, 0.2)));
     }
     auto d2 = [&](std::size_t i, std::size_t j) {
       return gate.DistanceSquared(stereo[i].point_m, stereo[i].covariance, lidar[j].point_m,

@@ -50,8 +50,8 @@ Matrix2d RandomCovariance(Rng& rng) {
   // A random rotation of random variances over six orders of magnitude (1e-4 .. 1e2 m^2).
   const double angle = rng.Uniform(-3.2, 3.2);
   const Eigen::Rotation2Dd rotation(angle);
-  const Vector2d variances(std::pow(10.0, rng.Uniform(-4.0, 2.0)),
-                           std::pow(10.0, rng.Uniform(-4.0, 2.0)));
+  const Vector2d variances{std::pow(10.0, rng.Uniform(-4.0, 2.0)),
+                           std::pow(10.0, rng.Uniform(-4.0, 2.0))};
   return rotation.toRotationMatrix() * variances.asDiagonal() *
          rotation.toRotationMatrix().transpose();
 }
@@ -63,8 +63,8 @@ TEST(GaussianFusionTest, FusedCovarianceIsNoLargerThanEitherInput) {
   const std::uint64_t seed = 4242;
   Rng rng(seed);
   for (int trial = 0; trial < 10000; ++trial) {
-    const Gaussian2 a{Vector2d(rng.Normal(), rng.Normal()), RandomCovariance(rng)};
-    const Gaussian2 b{Vector2d(rng.Normal(), rng.Normal()), RandomCovariance(rng)};
+    const Gaussian2 a{Vector2d{rng.Normal(), rng.Normal()}, RandomCovariance(rng)};
+    const Gaussian2 b{Vector2d{rng.Normal(), rng.Normal()}, RandomCovariance(rng)};
     const Gaussian2 f = FuseGaussians(a, b);
     for (const Matrix2d* input : {&a.covariance, &b.covariance}) {
       const Matrix2d difference = *input - f.covariance;

@@ -169,8 +169,8 @@ TEST(InverseSensorModelTest, AgreesWithTheMarchingReferenceOnRandomScans) {
     const Vector2d lower = g.WindowLowerLeftM();
     // The sensor inside the window, or (every fifth seed) up to half a window outside it.
     const double margin = seed % 5 == 0 ? 0.5 : 0.0;
-    const Pose2 pose(lower.x() + rng.Uniform(-margin, 1.0 + margin) * 12.0,
-                     lower.y() + rng.Uniform(-margin, 1.0 + margin) * 9.6, rng.Uniform(-kPi, kPi));
+    const Pose2 pose{lower.x() + rng.Uniform(-margin, 1.0 + margin) * 12.0,
+                     lower.y() + rng.Uniform(-margin, 1.0 + margin) * 9.6, rng.Uniform(-kPi, kPi)};
     std::vector<float> ranges;
     for (int i = 0; i < 120; ++i) {
       const double u = rng.Uniform();
@@ -179,7 +179,8 @@ TEST(InverseSensorModelTest, AgreesWithTheMarchingReferenceOnRandomScans) {
                        : u < 0.17 ? static_cast<float>(rng.Uniform(15.0, 30.0))  // beyond max
                                   : static_cast<float>(rng.Uniform(0.02, 14.0)));
     }
-    const LidarScan scan = Scan(rng.Uniform(-kPi, kPi), DegToRad(rng.Uniform(0.2, 3.0)),
+    const double first_angle_rad = rng.Uniform(-kPi, kPi);
+    const LidarScan scan = Scan(first_angle_rad, DegToRad(rng.Uniform(0.2, 3.0)),
                                 std::move(ranges), /*max_range_m=*/15.0);
     const MeasurementGrid fast = ComputeInverseSensorModel(scan, pose, g, o);
     const std::vector<int> reference = ReferenceRanks(scan, pose, g, o);
@@ -466,7 +467,7 @@ TEST(InverseSensorModelTest, ReusingTheOutputGivesTheSameResult) {
     std::vector<float> ranges;
     for (int i = 0; i < 641; ++i) ranges.push_back(static_cast<float>(rng.Uniform(0.5, 40.0)));
     const LidarScan scan = Scan(DegToRad(-80.0), DegToRad(0.25), ranges);
-    const Pose2 pose(rng.Uniform(-3.0, 3.0), rng.Uniform(-3.0, 3.0), rng.Uniform(-kPi, kPi));
+    const Pose2 pose{rng.Uniform(-3.0, 3.0), rng.Uniform(-3.0, 3.0), rng.Uniform(-kPi, kPi)};
     g.Recenter(pose.translation);
     ComputeInverseSensorModel(scan, pose, g, o, reused);
     const MeasurementGrid fresh = ComputeInverseSensorModel(scan, pose, g, o);

@@ -81,8 +81,8 @@ TEST(RayTraversalTest, VisitsExactlyTheCrossedCellsOfRandomSegments) {
     const Vector2d lower = g.WindowLowerLeftM();
     const Vector2d size(w * s, h * s);
     auto point = [&](double margin) {
-      return Vector2d(lower.x() + rng.Uniform(-margin, 1.0 + margin) * size.x(),
-                      lower.y() + rng.Uniform(-margin, 1.0 + margin) * size.y());
+      return Vector2d{lower.x() + rng.Uniform(-margin, 1.0 + margin) * size.x(),
+                      lower.y() + rng.Uniform(-margin, 1.0 + margin) * size.y()};
     };
     // Starts mostly inside (a sensor), sometimes outside; ends anywhere, some far away.
     const Vector2d a = point(trial % 5 == 0 ? 0.5 : 0.0);

@@ -42,7 +42,7 @@ TEST(ScrollingGridGeometryTest, MetresToCellToMetresRoundTrips) {
   for (int i = 0; i < 100000; ++i) {
     // Far from the origin too: after 100 km of driving, cells must still be exact.
     const double scale = i % 2 == 0 ? 50.0 : 1.0e5;
-    const Vector2d p(rng.Uniform(-scale, scale), rng.Uniform(-scale, scale));
+    const Vector2d p{rng.Uniform(-scale, scale), rng.Uniform(-scale, scale)};
     const CellIndex c = g.GlobalCellAt(p);
     const Vector2d lower_left = g.CellLowerLeftM(c);
     ASSERT_LE(lower_left.x(), p.x() + 1e-9) << "seed " << seed << " draw " << i;
@@ -143,7 +143,7 @@ TEST(GridLayersTest, ValuesStayPutInTheWorldWhileTheWindowScrolls) {
     const ScrollingGridGeometry& g = layers.geometry();
     for (int k = 0; k < 5; ++k) {
       const Vector2d lower = g.WindowLowerLeftM();
-      const Vector2d p = lower + Vector2d(rng.Uniform(0.0, 13 * 0.2), rng.Uniform(0.0, 9 * 0.2));
+      const Vector2d p = lower + Vector2d{rng.Uniform(0.0, 13 * 0.2), rng.Uniform(0.0, 9 * 0.2)};
       const auto i = g.StorageIndexAt(p);
       if (!i) continue;  // rounding at the upper edge
       const auto value = static_cast<float>(rng.Uniform());
@@ -154,7 +154,7 @@ TEST(GridLayersTest, ValuesStayPutInTheWorldWhileTheWindowScrolls) {
     }
     // Positive, negative, sub-cell, and larger-than-the-window moves.
     const double reach_m = step % 7 == 0 ? 10.0 : 1.0;
-    centre += Vector2d(rng.Uniform(-reach_m, reach_m), rng.Uniform(-reach_m, reach_m));
+    centre += Vector2d{rng.Uniform(-reach_m, reach_m), rng.Uniform(-reach_m, reach_m)};
     layers.Recenter(centre);
     for (auto it = written.begin(); it != written.end();) {
       it = layers.geometry().Contains({it->first.first, it->first.second}) ? std::next(it)

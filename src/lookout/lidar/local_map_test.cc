@@ -125,7 +125,7 @@ TEST(LocalMap, LikelihoodFieldMatchesBruteForceAsCellsAppearAndVanish) {
   const std::uint64_t seed = 12345;
   Rng rng(seed);
   for (int scan = 0; scan < 30; ++scan) {
-    const Eigen::Vector2d origin(rng.Uniform(-2.0, 2.0), rng.Uniform(-2.0, 2.0));
+    const Eigen::Vector2d origin{rng.Uniform(-2.0, 2.0), rng.Uniform(-2.0, 2.0)};
     std::vector<Eigen::Vector2d> hits;
     for (int i = 0; i < 40; ++i) {
       const double a = rng.Uniform(-kPi, kPi);

@@ -37,8 +37,8 @@ Drive SimulateDrive(std::uint64_t seed, int laps_tenths) {
     const Pose2 truth(p, std::atan2(v.y(), v.x()));
     if (k > 0) {
       const Pose2 inc = d.truth.back().Inverse() * truth;
-      const Pose2 noisy(inc.x() * 1.02 + rng.Normal(0.0, 0.02), inc.y() + rng.Normal(0.0, 0.01),
-                        inc.yaw * 1.03 + rng.Normal(0.0, 0.01));
+      const Pose2 noisy{inc.x() * 1.02 + rng.Normal(0.0, 0.02), inc.y() + rng.Normal(0.0, 0.01),
+                        inc.yaw * 1.03 + rng.Normal(0.0, 0.01)};
       odometry = odometry * noisy;
     } else {
       odometry = truth;  // the odometry frame starts at the true pose

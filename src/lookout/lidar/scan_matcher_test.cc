@@ -58,11 +58,11 @@ TEST(ScanMatcher, RecoversAKnownOffset) {
   const std::uint64_t seed = 31;
   Rng rng(seed);
   for (int trial = 0; trial < 10; ++trial) {
-    const Pose2 truth(rng.Uniform(-12.0, 12.0), rng.Uniform(-4.0, 4.0), rng.Uniform(-kPi, kPi));
+    const Pose2 truth{rng.Uniform(-12.0, 12.0), rng.Uniform(-4.0, 4.0), rng.Uniform(-kPi, kPi)};
     const ScanPoints points = ExtractScanPoints(testing::CastScan(world, truth), o);
     // An odometry error of up to 0.3 m and 0.15 rad, inside the window of a 1 m, 0.3 rad step.
-    const Pose2 guess = truth * Pose2(rng.Uniform(-0.3, 0.3), rng.Uniform(-0.3, 0.3),
-                                      rng.Uniform(-0.15, 0.15));
+    const Pose2 guess = truth * Pose2{rng.Uniform(-0.3, 0.3), rng.Uniform(-0.3, 0.3),
+                                      rng.Uniform(-0.15, 0.15)};
     const SearchWindow window = SearchWindowFor(Pose2(1.0, 0.0, 0.3), o);
     ASSERT_GE(window.xy_m, 0.3);
     ASSERT_GE(window.yaw_rad, 0.15);

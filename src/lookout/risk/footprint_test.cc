@@ -96,12 +96,11 @@ TEST(FootprintTest, MatchesTheReferenceOnRandomPairs) {
   Rng rng(kSeed);
   const auto random_footprint = [&rng] {
     const bool circle = rng.Uniform(0.0, 1.0) < 0.25;
-    Footprint f = circle ? Footprint::Circle({rng.Uniform(-4.0, 4.0), rng.Uniform(-4.0, 4.0)},
-                                             rng.Uniform(0.1, 1.5))
-                         : Footprint::Box({rng.Uniform(-4.0, 4.0), rng.Uniform(-4.0, 4.0)},
-                                          rng.Uniform(-4.0, 4.0), rng.Uniform(0.3, 6.0),
-                                          rng.Uniform(0.3, 3.0), rng.Uniform(0.0, 0.5));
-    return f;
+    const Eigen::Vector2d centre{rng.Uniform(-4.0, 4.0), rng.Uniform(-4.0, 4.0)};
+    if (circle) return Footprint::Circle(centre, rng.Uniform(0.1, 1.5));
+    const double yaw_rad = rng.Uniform(-4.0, 4.0), length_m = rng.Uniform(0.3, 6.0);
+    const double width_m = rng.Uniform(0.3, 3.0), margin_m = rng.Uniform(0.0, 0.5);
+    return Footprint::Box(centre, yaw_rad, length_m, width_m, margin_m);
   };
   int overlapping = 0;
   for (int i = 0; i < 200; ++i) {
@@ -111,7 +110,7 @@ TEST(FootprintTest, MatchesTheReferenceOnRandomPairs) {
     // bounds the reference's error to about 3e-6 m.
     EXPECT_NEAR(s, ReferenceSeparation(a, b), 1e-5) << "pair " << i << ", seed " << kSeed;
     EXPECT_EQ(Overlap(a, b, Eigen::Vector2d::Zero()), s <= 0.0) << "pair " << i;
-    const Eigen::Vector2d offset(rng.Uniform(-3.0, 3.0), rng.Uniform(-3.0, 3.0));
+    const Eigen::Vector2d offset{rng.Uniform(-3.0, 3.0), rng.Uniform(-3.0, 3.0)};
     Footprint moved = b;
     moved.centre_m += offset;
     EXPECT_EQ(Overlap(a, b, offset), Separation(a, moved) <= 0.0) << "pair " << i;

@@ -259,7 +259,7 @@ TEST(RaycastTest, FanAgreesWithBruteForceOnRandomWorlds) {
     SCOPED_TRACE(::testing::Message() << "seed " << seed);
     Rng rng(DeriveSeed(seed, "raycast_test", 0));
     const auto random_point = [&](double half) {
-      return Vector2d(rng.Uniform(-half, half), rng.Uniform(-half, half));
+      return Vector2d{rng.Uniform(-half, half), rng.Uniform(-half, half)};
     };
     std::vector<Shape> world;
     for (int j = 0, n = static_cast<int>(rng.UniformIndex(12)); j < n; ++j) {
@@ -269,18 +269,20 @@ TEST(RaycastTest, FanAgreesWithBruteForceOnRandomWorlds) {
       } else if (rng.Bernoulli(0.5)) {
         world.push_back(RandomStar(rng, c, kStaticOwner));
       } else {
-        world.push_back(MakeBox(c, rng.Uniform(-kPi, kPi), rng.Uniform(0.5, 20.0),
-                                rng.Uniform(0.5, 20.0), kStaticOwner));
+        const double yaw = rng.Uniform(-kPi, kPi), length = rng.Uniform(0.5, 20.0);
+        world.push_back(MakeBox(c, yaw, length, rng.Uniform(0.5, 20.0), kStaticOwner));
       }
     }
     const int actor_count = static_cast<int>(rng.UniformIndex(10));
     std::vector<Shape> actors;
     for (int a = 0; a < actor_count; ++a) {
       const Vector2d c = random_point(50.0);
-      actors.push_back(rng.Bernoulli(0.3)
-                           ? MakeCircle(c, rng.Uniform(0.2, 0.5), a)
-                           : MakeBox(c, rng.Uniform(-kPi, kPi), rng.Uniform(1.5, 8.0),
-                                     rng.Uniform(0.6, 2.5), a));
+      if (rng.Bernoulli(0.3)) {
+        actors.push_back(MakeCircle(c, rng.Uniform(0.2, 0.5), a));
+      } else {
+        const double yaw = rng.Uniform(-kPi, kPi), length = rng.Uniform(1.5, 8.0);
+        actors.push_back(MakeBox(c, yaw, length, rng.Uniform(0.6, 2.5), a));
+      }
       if (rng.Bernoulli(0.2)) actors.push_back(RandomStar(rng, random_point(50.0), a));
     }
     const double increment = DegToRad(rng.Uniform(0.05, 2.0));

@@ -173,8 +173,8 @@ TEST(ShapesTest, RandomBoxesAndCirclesMatchTheReferences) {
   Rng rng(seed);
   int overlaps = 0;
   for (int i = 0; i < 5000; ++i) {
-    const Pose2 pa(rng.Uniform(-3, 3), rng.Uniform(-3, 3), rng.Uniform(-kPi, kPi));
-    const Pose2 pb(rng.Uniform(-3, 3), rng.Uniform(-3, 3), rng.Uniform(-kPi, kPi));
+    const Pose2 pa{rng.Uniform(-3, 3), rng.Uniform(-3, 3), rng.Uniform(-kPi, kPi)};
+    const Pose2 pb{rng.Uniform(-3, 3), rng.Uniform(-3, 3), rng.Uniform(-kPi, kPi)};
     const double la = rng.Uniform(0.5, 5), wa = rng.Uniform(0.3, 2.5);
     const double lb = rng.Uniform(0.5, 5), wb = rng.Uniform(0.3, 2.5);
     const Shape a = Shape::Box(pa, la, wa, 0);
@@ -184,12 +184,12 @@ TEST(ShapesTest, RandomBoxesAndCirclesMatchTheReferences) {
     ASSERT_EQ(Overlap(a, b), expected) << "case " << i;
     ASSERT_EQ(Overlap(b, a), expected) << "case " << i;
 
-    const Vector2d c(rng.Uniform(-4, 4), rng.Uniform(-4, 4));
+    const Vector2d c{rng.Uniform(-4, 4), rng.Uniform(-4, 4)};
     const double r = rng.Uniform(0.05, 1.5);
     ASSERT_EQ(Overlap(a, Shape::Circle(c, r, 2)), ReferenceBoxCircleOverlap(pa, la, wa, c, r))
         << "case " << i;
 
-    const Vector2d p(rng.Uniform(-6, 6), rng.Uniform(-6, 6));
+    const Vector2d p{rng.Uniform(-6, 6), rng.Uniform(-6, 6)};
     const Vector2d local = pa.Inverse() * p;
     ASSERT_EQ(Contains(a, p), std::abs(local.x()) <= la / 2 && std::abs(local.y()) <= wa / 2)
         << "case " << i;

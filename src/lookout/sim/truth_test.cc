@@ -140,21 +140,22 @@ TEST(TruthTest, RandomScenesMatchTheSlowReference) {
   SCOPED_TRACE("seed " + std::to_string(seed));
   Rng rng(seed);
   for (int scene = 0; scene < 20; ++scene) {
-    const GridGeometry g{Vector2d(rng.Uniform(-12, -8), rng.Uniform(-12, -8)),
+    const GridGeometry g{Vector2d{rng.Uniform(-12, -8), rng.Uniform(-12, -8)},
                          rng.Uniform(0.1, 0.4), 80, 70};
     std::vector<Shape> world;
     for (int i = 0; i < 4; ++i) {
-      world.push_back(Shape::Circle({rng.Uniform(-15, 15), rng.Uniform(-15, 15)},
-                                    rng.Uniform(0.1, 2.0), kStaticOwner));
-      world.push_back(
-          Shape::Box(Pose2(rng.Uniform(-15, 15), rng.Uniform(-15, 15), rng.Uniform(-kPi, kPi)),
-                     rng.Uniform(1, 8), rng.Uniform(1, 8), kStaticOwner));
+      const Vector2d centre{rng.Uniform(-15, 15), rng.Uniform(-15, 15)};
+      world.push_back(Shape::Circle(centre, rng.Uniform(0.1, 2.0), kStaticOwner));
+      const Pose2 pose{rng.Uniform(-15, 15), rng.Uniform(-15, 15), rng.Uniform(-kPi, kPi)};
+      const double length = rng.Uniform(1, 8);
+      world.push_back(Shape::Box(pose, length, rng.Uniform(1, 8), kStaticOwner));
     }
     TruthFrame frame;
     for (int i = 0; i < 5; ++i) {
-      frame.actors.push_back(BoxActor(
-          i, Pose2(rng.Uniform(-12, 12), rng.Uniform(-12, 12), rng.Uniform(-kPi, kPi)),
-          rng.Uniform(0.5, 6), rng.Uniform(0.5, 2.5), rng.Uniform(0, 15), rng.Uniform(-1, 1)));
+      const Pose2 pose{rng.Uniform(-12, 12), rng.Uniform(-12, 12), rng.Uniform(-kPi, kPi)};
+      const double length = rng.Uniform(0.5, 6), width = rng.Uniform(0.5, 2.5);
+      const double speed = rng.Uniform(0, 15);
+      frame.actors.push_back(BoxActor(i, pose, length, width, speed, rng.Uniform(-1, 1)));
     }
     const TruthRaster r = RasteriseTruth(frame, world, g);
     ASSERT_EQ(r.owner, ReferenceOwners(frame, world, g)) << "scene " << scene;

@@ -61,7 +61,7 @@ TEST(RangeBearingTest, CovarianceMatchesMonteCarlo) {
   Vector2d sum = Vector2d::Zero();
   Matrix2d sum_outer = Matrix2d::Zero();
   for (int i = 0; i < n; ++i) {
-    const Vector2d z = chol * Vector2d(rng.Normal(), rng.Normal());
+    const Vector2d z = chol * Vector2d{rng.Normal(), rng.Normal()};
     const double r = polar.range_m + z.x();
     const double b = polar.bearing_rad + z.y();
     const Vector2d p = lidar * Vector2d(r * std::cos(b), r * std::sin(b));

@@ -46,7 +46,11 @@ BenchmarkScene MakeBenchmarkScene(int targets, int false_objects, int scans, std
       truth.push_back(p);
       if (rng.Bernoulli(kMissProbability)) continue;
       Detection d;
-      d.position_m = p + kSigmaM * Eigen::Vector2d(rng.Normal(), rng.Normal());
+      // The y draw first, in its own statement: the order GCC happened to take when this scene's
+      // figures were written (two draws in one call's arguments are unsequenced).
+      const double noise_y = rng.Normal();
+      const double noise_x = rng.Normal();
+      d.position_m = p + kSigmaM * Eigen::Vector2d(noise_x, noise_y);
       d.covariance = Eigen::Matrix2d::Identity() * kSigmaM * kSigmaM;
       d.object_class = m.object_class;
       d.sensors = rng.Bernoulli(0.5) ? 2 : 1;

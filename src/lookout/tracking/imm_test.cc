@@ -33,7 +33,7 @@ TEST(Imm, WithOneModelItIsThatModelsKalmanFilterExactly) {
     Rng rng(7);
     const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * 4.0;
     for (int k = 0; k < 30; ++k) {
-      const Eigen::Vector2d z(5.0 * k + rng.Normal(), 1.0 * k + rng.Normal());
+      const Eigen::Vector2d z{5.0 * k + rng.Normal(), 1.0 * k + rng.Normal()};
       imm = Update(options, PredictTo(options, imm, imm.time + 500'000'000), z, R).state;
       kf = UpdateState(PredictState(model, kf, 0.5), z, R).posterior;
     }

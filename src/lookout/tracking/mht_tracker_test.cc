@@ -31,7 +31,7 @@ Detection At(const Eigen::Vector2d& p, ObjectClass c = ObjectClass::kUnknown, in
 }
 
 Eigen::Vector2d Noise(Rng& rng, double sigma_m) {
-  return sigma_m * Eigen::Vector2d(rng.Normal(), rng.Normal());
+  return sigma_m * Eigen::Vector2d{rng.Normal(), rng.Normal()};
 }
 
 // The confirmed track nearest `p` within `radius_m`; 0 when none.
@@ -102,7 +102,7 @@ CrossingResult RunCrossing(T& tracker, std::uint64_t seed, const Crossing& c = {
 // The MHT defers the decision the GNN takes scan by scan at the crossing (which track the merged
 // detection belongs to, which one is missed) and keeps the targets' identities where the GNN
 // swaps them. Over 50 seeds, the GNN must fail at least 6 times (else the case tests nothing)
-// and the MHT at most a third as often (13 and 1 when this was written).
+// and the MHT at most a third as often (14 and 1 when this was written).
 TEST(MhtTrackerTest, CrossingTargetsKeepTheirIdentitiesWhereTheGnnSwapsThem) {
   int gnn_failures = 0, mht_failures = 0;
   std::vector<std::uint64_t> gnn_seeds, mht_seeds;
@@ -127,9 +127,10 @@ TEST(MhtTrackerTest, CrossingTargetsKeepTheirIdentitiesWhereTheGnnSwapsThem) {
       << ::testing::PrintToString(gnn_seeds);
 }
 
-// One seed in close-up: the GNN swaps the two cars, the MHT keeps them apart.
+// One seed in close-up (the first the test above lists for the GNN): the GNN swaps the two cars,
+// the MHT keeps them apart.
 TEST(MhtTrackerTest, OneCrossingTheGnnSwaps) {
-  constexpr std::uint64_t kSeed = 3;
+  constexpr std::uint64_t kSeed = 2;
   GnnTracker gnn;
   MhtTracker mht;
   EXPECT_NE(RunCrossing(gnn, kSeed), CrossingResult::kKept) << "seed " << kSeed;

@@ -36,7 +36,7 @@ inline std::vector<Eigen::VectorXd> SimulateTruth(Rng& rng, const MotionModel& m
 }
 
 inline Eigen::Vector2d Measure(Rng& rng, const Eigen::VectorXd& x, double sigma) {
-  return Eigen::Vector2d(x(0) + sigma * rng.Normal(), x(1) + sigma * rng.Normal());
+  return Eigen::Vector2d{x(0) + sigma * rng.Normal(), x(1) + sigma * rng.Normal()};
 }
 
 }  // namespace lookout::tracking::testing
