@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -126,6 +127,17 @@ std::string Segments(const lookout::io::CarmenLog& log, const lookout::lidar::Sl
   return out + "\n";
 }
 
+// The whole of `text` as a number, or an InputError naming the flag (a usage error: exit 2, where
+// std::stoi's exception would have exited 1 as a failure of the run).
+template <typename T>
+T ParseNumber(const std::string& flag, const std::string& text) {
+  T value{};
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end) throw InputError(flag, 0, text, "not a number");
+  return value;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -143,7 +155,7 @@ int main(int argc, char** argv) {
           throw InputError("--seeds", 0, "seeds", "expected FIRST-LAST, as 1-5");
         }
       } else if (a == "--segments" && i + 1 < argc) {
-        segments = std::stoi(argv[++i]);
+        segments = ParseNumber<int>("--segments", argv[++i]);
         if (segments < 1) throw InputError("--segments", 0, "segments", "expected a count >= 1");
       } else if (a == "--set" && i + 1 < argc) {
         const std::string v = argv[++i];
@@ -152,7 +164,7 @@ int main(int argc, char** argv) {
         if (eq == std::string::npos || it == settable.end()) {
           throw InputError("--set", 0, v.substr(0, eq), "not an option --set knows");
         }
-        it->second(options, std::stod(v.substr(eq + 1)));
+        it->second(options, ParseNumber<double>("--set", v.substr(eq + 1)));
         settings.push_back(v);
       } else {
         logs.push_back(a);
