@@ -32,6 +32,7 @@
 
 #include "lookout/app/slam_command.h"
 #include "lookout/core/input_error.h"
+#include "lookout/eval/statistics.h"
 #include "lookout/eval/trajectory_error.h"
 
 namespace {
@@ -201,10 +202,7 @@ int main(int argc, char** argv) {
       }
       const int n = last_seed - first_seed + 1;
       const double duration = log.records.back().t_s - log.records.front().t_s;
-      std::sort(ates.begin(), ates.end());
-      const std::size_t mid = ates.size() / 2;
-      const double median = ates.size() % 2 == 1 ? ates[mid] : 0.5 * (ates[mid - 1] + ates[mid]);
-      row += fmt::format(" {:.3f} | {:.3f} | {:.3f} |", median, worst, sum / n);
+      row += fmt::format(" {:.3f} | {:.3f} | {:.3f} |", lookout::eval::Median(ates), worst, sum / n);
       row += duration > 0.0 ? fmt::format(" {:.0f}x |", duration * n / cpu) : std::string(" - |");
       std::printf("%s\n%s", row.c_str(), spans.c_str());
       std::fflush(stdout);

@@ -259,7 +259,7 @@ RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const R
 }
 
 risk::Carriageways CarriagewaysOf(const sim::World& world, const Pose2& frame_from_world) {
-  if (!world.preset) return {};
+  if (world.preset != "four_way") return {};
   const double length = 2.0 * sim::kFourWayBlockExtentM;
   const double width = 2.0 * sim::kFourWayRoadHalfWidthM;
   const Eigen::Vector2d centre = frame_from_world * Eigen::Vector2d::Zero();
