@@ -32,6 +32,20 @@ case "$case_name" in
     "$lookout" slam "$aces" --trajectory "$work/slam2.txt" >/dev/null
     cmp "$work/slam.txt" "$work/slam2.txt" || fail "two runs differ"
     ;;
+  goal_logs)
+    # The ATE goal of docs/lidar-slam.md on each of the four goal logs, on the default seed:
+    # at most 0.2 m against the log's corrected poses (11 s of processor time for the four).
+    for name in aces csail fhw freiburg-101; do
+      log="$src/../shared/data/carmen/$name-corrected.log.gz"
+      [[ -f "$log" ]] || { echo "skipped: $log not found"; exit 0; }
+    done
+    for name in aces csail fhw freiburg-101; do
+      "$lookout" slam "$src/../shared/data/carmen/$name-corrected.log.gz" >"$work/$name.out"
+      ate=$(awk '$1 == "ate" { print $2 }' "$work/$name.out")
+      echo "$name: ATE $ate m"
+      awk -v a="$ate" 'BEGIN { exit !(a != "" && a <= 0.2) }' || fail "$name: ATE $ate m above 0.2 m"
+    done
+    ;;
   bad_input)
     printf 'this is not\na CARMEN log\n' >"$work/junk.log"
     set +e
