@@ -69,6 +69,10 @@ void Pipeline::SetCarriageways(risk::Carriageways roads_m) {
   if (risk_) risk_->SetCarriageways(std::move(roads_m));
 }
 
+void Pipeline::SetBuildings(BuildingOutlines buildings_m) {
+  if (tracking_) tracking_->SetBuildings(std::move(buildings_m));
+}
+
 void Pipeline::OnOdometry(const EgoOdometry& odometry) {
   for (const auto& stage : stages_) stage->OnOdometry(odometry);
   if (risk_) risk_->OnOdometry(odometry);

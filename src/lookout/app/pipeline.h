@@ -98,6 +98,9 @@ class Pipeline {
   // The carriageways of the ego's map, odometry frame (RiskStage::SetCarriageways); ignored
   // without risk.
   void SetCarriageways(risk::Carriageways roads_m);
+  // The buildings of the ego's map, odometry frame (TrackingStage::SetBuildings); ignored
+  // without tracking.
+  void SetBuildings(BuildingOutlines buildings_m);
 
   void OnOdometry(const EgoOdometry& odometry);
   void OnStereo(const StereoFrame& frame);

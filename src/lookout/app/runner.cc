@@ -95,6 +95,8 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   }
   pipeline.SetEgoRoute(route_odom);
   pipeline.SetCarriageways(CarriagewaysOf(scenario.world, world_from_odom.Inverse()));
+  pipeline.SetBuildings(
+      Transformed(sim::BuildingOutlines(scenario.world), world_from_odom.Inverse()));
   std::optional<TrackingScorer> tracking_scorer;
   if (pipeline.tracking()) {
     const grid::GridOptions grid_options;

@@ -120,6 +120,9 @@ void DetectionOptions::Validate(const std::string& source) const {
   if (!(camera_gate_probability > 0.0 && camera_gate_probability < 1.0)) {
     throw InputError(source, 0, "camera_gate_probability", "must be in (0, 1)");
   }
+  if (!std::isfinite(building_margin_m) || building_margin_m < 0.0) {
+    throw InputError(source, 0, "building_margin_m", "must be >= 0");
+  }
 }
 
 void TrackingStageOptions::Validate(const std::string& source) const {
@@ -163,7 +166,8 @@ bool IsRoadUser(const tracking::Track& t, const DetectionOptions& options) {
 
 std::vector<tracking::Detection> DetectionsFromFusedObjects(
     const fusion::FusedObjectFrame& frame, const DetectionOptions& options,
-    const std::vector<CameraHistory>& history, const std::optional<Pose2>& camera_mount) {
+    const std::vector<CameraHistory>& history, const std::optional<Pose2>& camera_mount,
+    const BuildingOutlines& buildings, std::int64_t* in_buildings) {
   std::vector<tracking::Detection> out;
   out.reserve(frame.objects.size());
   const Eigen::Matrix2d r = frame.ego_pose.Rotation();
@@ -192,6 +196,10 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
                  : o.point_m;
     tracking::Detection d;
     d.position_m = frame.ego_pose * centre;
+    if (lidar_only && DepthInsideBuildings(buildings, d.position_m) > options.building_margin_m) {
+      if (in_buildings) ++*in_buildings;
+      continue;
+    }
     d.covariance = r * o.point_covariance * r.transpose() +
                    options.centre_offset_sigma_m * options.centre_offset_sigma_m *
                        Eigen::Matrix2d::Identity();
@@ -227,7 +235,8 @@ void TrackingStage::Warn(std::string message) {
 void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
                          const std::optional<Pose2>& camera_mount) {
   detections_ = DetectionsFromFusedObjects(frame, options_.detections,
-                                           camera_history_.Update(frame), camera_mount);
+                                           camera_history_.Update(frame), camera_mount,
+                                           buildings_, &in_buildings_);
   const Clock::time_point start = Clock::now();
   const bool accepted = tracker_->Step(frame.stamp, detections_);
   step_ms_.push_back(MsSince(start));

@@ -22,8 +22,11 @@
 // the history. Objects the camera did not see keep the lidar's class.
 //
 // Which objects become detections: every fused object but poles (street furniture, not road
-// users) and the lidar-only objects that the grid holds static (parked cars, buildings' corners:
-// the tracker follows road users; a static road user seen by the camera stays in).
+// users), the lidar-only objects that the grid holds static (parked cars, buildings' corners:
+// the tracker follows road users; a static road user seen by the camera stays in), and, when
+// the ego's map is known, the lidar-only objects whose centre lies inside a building (ghosts of
+// its walls, building_map.h; where the camera sees them its silence ends them too, but most
+// lie beside the road, outside its view).
 //
 // Which tracks are output (tracks(), the risk stage's input): the tracker's confirmed tracks
 // but those the camera has not spoken for (existence log odds <= 0: no camera object, or more
@@ -51,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "lookout/app/building_map.h"
 #include "lookout/core/pose2.h"
 #include "lookout/fusion/fused_object.h"
 #include "lookout/tracking/gnn_tracker.h"
@@ -85,6 +89,11 @@ struct DetectionOptions {
   double camera_view_margin_m = 2.0;
   // A camera object within this chi-square gate (2 dof) of a lidar-only object saw it.
   double camera_gate_probability = 0.999;
+  // A lidar-only object whose centre lies deeper than this inside a building of the ego's map
+  // (building_map.h) is a ghost of its wall: left out. Half a walker's radius, so that a road
+  // user beside a wall (its centre at least its radius outside) stays in with its estimate's
+  // error.
+  double building_margin_m = 0.15;
   // A track without the camera's support is a road user only when it moves: faster than
   // this (the grid's and fusion's "dynamic" threshold), and its velocity significantly not
   // zero (outside this chi-square gate of zero, 2 dof).
@@ -110,12 +119,15 @@ struct CameraHistory {
 // camera's evidence for an object (CameraEvidence::kSeen) from its camera track's second frame
 // on: the camera's false objects are never tracked over frames. `camera_mount` (vehicle
 // frame): the camera whose frame is recent enough for this cycle, nullopt when there is none.
+// `buildings` (odometry frame): the ego's map; a lidar-only object whose centre lies inside one
+// deeper than building_margin_m is left out and counted in `*in_buildings` (when given).
 // Objects with a non-finite field are passed on as they are: the tracker drops and counts
 // them. Pure.
 std::vector<tracking::Detection> DetectionsFromFusedObjects(
     const fusion::FusedObjectFrame& frame, const DetectionOptions& options,
     const std::vector<CameraHistory>& history = {},
-    const std::optional<Pose2>& camera_mount = std::nullopt);
+    const std::optional<Pose2>& camera_mount = std::nullopt,
+    const BuildingOutlines& buildings = {}, std::int64_t* in_buildings = nullptr);
 
 // Whether a confirmed track is output as a road user (above). Pure.
 bool IsRoadUser(const tracking::Track& track, const DetectionOptions& options);
@@ -159,6 +171,10 @@ class TrackingStage {
   // stay as they were and a warning is logged (warnings()).
   void Step(const fusion::FusedObjectFrame& frame,
             const std::optional<Pose2>& camera_mount = std::nullopt);
+  // The buildings of the ego's map in the odometry frame (empty: none).
+  void SetBuildings(BuildingOutlines buildings) { buildings_ = std::move(buildings); }
+  // Lidar-only objects left out so far for lying inside a building.
+  std::int64_t detections_in_buildings() const { return in_buildings_; }
 
   const tracking::Tracker& tracker() const { return *tracker_; }
   // The GNN beside the tracker, or nullptr when it does not run.
@@ -194,6 +210,8 @@ class TrackingStage {
   std::vector<std::string> warnings_;
   std::int64_t warning_count_ = 0;
   std::int64_t dropped_reported_ = 0;
+  BuildingOutlines buildings_;
+  std::int64_t in_buildings_ = 0;
 };
 
 }  // namespace lookout::app

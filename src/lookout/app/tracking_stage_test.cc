@@ -82,6 +82,40 @@ TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
   EXPECT_NEAR(d[0].covariance(1, 1), 4.0, 1e-12);
 }
 
+TEST(DetectionsFromFusedObjectsTest, LeavesOutLidarOnlyObjectsInsideABuilding) {
+  // A wall along x = 10 (the building beyond it), the ego at the origin looking along x. A
+  // lidar-only "walker" seen on the wall has its centre a radius (0.3 m) behind it, inside: a
+  // ghost of the wall. A walker beside the wall (its seen side 0.5 m before it) stays in, and
+  // so does the same ghost's position when the camera saw it (fusion paired a camera object).
+  const BuildingOutlines block = {{{10, -20}, {30, -20}, {30, 20}, {10, 20}}};
+  fusion::FusedObject ghost = Object(ObjectClass::kPedestrian, {10.0, 2.0}, {10.0, 2.6});
+  ghost.stereo_id.reset();
+  ghost.sensor_count = 1;
+  fusion::FusedObject walker = ghost;
+  walker.front_start_m = {9.5, -2.0};
+  walker.front_end_m = {9.5, -1.4};
+  walker.point_m = {9.5, -1.7};
+  const fusion::FusedObject seen = Object(ObjectClass::kPedestrian, {10.0, 5.0}, {10.0, 5.6});
+  std::int64_t left_out = 0;
+  const auto d = DetectionsFromFusedObjects(Frame(0, {ghost, walker, seen}), {}, {},
+                                            std::nullopt, block, &left_out);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_NEAR(d[0].position_m.x(), 9.8, 1e-9);  // the walker, 0.2 m before the wall
+  EXPECT_EQ(d[1].sensors, 2);
+  EXPECT_EQ(left_out, 1);
+  // Without a map, or in another frame where the block is elsewhere, the ghost is tracked.
+  EXPECT_EQ(DetectionsFromFusedObjects(Frame(0, {ghost, walker, seen}), {}).size(), 3u);
+  EXPECT_EQ(DetectionsFromFusedObjects(Frame(0, {ghost}, Pose2(0.0, 50.0, 0.0)), {}, {},
+                                       std::nullopt, block)
+                .size(),
+            1u);
+  // Deeper than the margin only: a margin of 0.4 m keeps the ghost (0.3 m inside).
+  DetectionOptions wide;
+  wide.building_margin_m = 0.4;
+  EXPECT_EQ(DetectionsFromFusedObjects(Frame(0, {ghost}), wide, {}, std::nullopt, block).size(),
+            1u);
+}
+
 TEST(DetectionsFromFusedObjectsTest, LeavesOutPolesAndStaticLidarOnlyObjects) {
   fusion::FusedObject pole = Object(ObjectClass::kPole, {5.0, 0.0}, {5.0, 0.2});
   fusion::FusedObject parked = Object(ObjectClass::kCar, {8.0, 3.0}, {12.0, 3.0});
@@ -258,6 +292,14 @@ TEST(TrackingStageOptionsTest, OptionsNameTheBadField) {
     EXPECT_NE(std::string(e.what()).find("car_width_m"), std::string::npos) << e.what();
   }
   o.detections.car_width_m = 1.8;
+  o.detections.building_margin_m = -0.1;
+  try {
+    o.Validate();
+    FAIL() << "accepted a negative building margin";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("building_margin_m"), std::string::npos) << e.what();
+  }
+  o.detections.building_margin_m = 0.15;
   o.mht.hypotheses_m = 0;
   try {
     o.Validate();

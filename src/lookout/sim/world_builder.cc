@@ -21,17 +21,20 @@ constexpr double kFurnitureLineM = kFourWayRoadHalfWidthM + 0.5;
 // corner geometry: the NE and SW blocks are plain squares, the NW block has its corner cut
 // by an irregular (not 45 degree) chamfer, which opens the view round it a little, and the SE
 // block is an L with a forecourt recessed into its corner, a non-convex outline.
-void AddFourWay(std::vector<Shape>& shapes) {
+std::vector<std::vector<Vector2d>> FourWayBlocks() {
   const double b = kBuildingLineM;
   const double e = kFourWayBlockExtentM;
   // Every ring counter-clockwise; in order NE, NW, SW, SE.
-  shapes.push_back(Shape::Polygon({{b, b}, {e, b}, {e, e}, {b, e}}, kStaticOwner));
-  shapes.push_back(
-      Shape::Polygon({{-e, b}, {-(b + 4.0), b}, {-b, b + 3.0}, {-b, e}, {-e, e}}, kStaticOwner));
-  shapes.push_back(Shape::Polygon({{-e, -e}, {-b, -e}, {-b, -b}, {-e, -b}}, kStaticOwner));
-  shapes.push_back(Shape::Polygon(
-      {{b, -e}, {e, -e}, {e, -b}, {b + 8.0, -b}, {b + 8.0, -(b + 6.0)}, {b, -(b + 6.0)}},
-      kStaticOwner));
+  return {{{b, b}, {e, b}, {e, e}, {b, e}},
+          {{-e, b}, {-(b + 4.0), b}, {-b, b + 3.0}, {-b, e}, {-e, e}},
+          {{-e, -e}, {-b, -e}, {-b, -b}, {-e, -b}},
+          {{b, -e}, {e, -e}, {e, -b}, {b + 8.0, -b}, {b + 8.0, -(b + 6.0)}, {b, -(b + 6.0)}}};
+}
+
+void AddFourWay(std::vector<Shape>& shapes) {
+  for (std::vector<Vector2d>& block : FourWayBlocks()) {
+    shapes.push_back(Shape::Polygon(std::move(block), kStaticOwner));
+  }
 
   // Lamp posts: one on each sidewalk corner and a few along the approaches, staggered.
   const double f = kFurnitureLineM;
@@ -62,6 +65,20 @@ Shape ObstacleShape(const Obstacle& o) {
 }
 
 }  // namespace
+
+std::vector<std::vector<Vector2d>> BuildingOutlines(const World& world) {
+  std::vector<std::vector<Vector2d>> out;
+  if (world.preset) {
+    if (*world.preset != "four_way") {
+      throw std::invalid_argument("unknown world preset \"" + *world.preset + "\"");
+    }
+    out = FourWayBlocks();
+  }
+  for (const Obstacle& o : world.obstacles) {
+    if (o.kind == ObstacleKind::kBuilding) out.push_back(o.polygon);
+  }
+  return out;
+}
 
 std::vector<Shape> BuildStaticWorld(const World& world) {
   std::vector<Shape> shapes;

@@ -16,6 +16,11 @@ namespace lookout::sim {
 // "four_way") and throws std::invalid_argument.
 std::vector<Shape> BuildStaticWorld(const World& world);
 
+// The outlines of the world's buildings (the preset's blocks, NE, NW, SW, SE, then the file's
+// building obstacles in file order): the part of the static world a map of the ground holds,
+// and where no road user can be. World frame; an unknown preset throws as above.
+std::vector<std::vector<Eigen::Vector2d>> BuildingOutlines(const World& world);
+
 // The four_way layout, metres. Carriageways: |y| <= kFourWayRoadHalfWidthM (east-west) and
 // |x| <= kFourWayRoadHalfWidthM (north-south), free of preset shapes. Sidewalks run
 // kFourWaySidewalkWidthM beyond each kerb and hold only poles and signs, 0.5 m from the kerb;

@@ -149,10 +149,31 @@ TEST(WorldBuilderTest, ObstaclesAreAppendedWithTheirGeometry) {
   EXPECT_EQ(BuildStaticWorld(w).size(), 4u);
 }
 
+TEST(WorldBuilderTest, BuildingOutlinesAreThePresetsBlocksAndTheFilesBuildings) {
+  World w = FourWay();
+  const std::vector<Shape> shapes = BuildStaticWorld(w);
+  const std::vector<std::vector<Vector2d>> blocks = BuildingOutlines(w);
+  ASSERT_EQ(blocks.size(), 4u);
+  for (std::size_t i = 0; i < blocks.size(); ++i) EXPECT_EQ(blocks[i], shapes[i].vertices);
+  Obstacle building;
+  building.kind = ObstacleKind::kBuilding;
+  building.polygon = {{-40, 10}, {-10, 10}, {-10, 40}, {-40, 40}};
+  Obstacle car;  // a parked car is no building: it leaves, and is no part of a map
+  car.kind = ObstacleKind::kParkedCar;
+  car.length_m = 4.5;
+  car.width_m = 1.8;
+  w.obstacles = {car, building};
+  const std::vector<std::vector<Vector2d>> all = BuildingOutlines(w);
+  ASSERT_EQ(all.size(), 5u);
+  EXPECT_EQ(all[4], building.polygon);
+  EXPECT_TRUE(BuildingOutlines(World{}).empty());
+}
+
 TEST(WorldBuilderTest, UnknownPresetIsAProgrammingError) {
   World w;
   w.preset = "roundabout";
   EXPECT_THROW(BuildStaticWorld(w), std::invalid_argument);
+  EXPECT_THROW(BuildingOutlines(w), std::invalid_argument);
 }
 
 }  // namespace
