@@ -1,6 +1,8 @@
 #include "lookout/grid/interaction_constraints.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <vector>
 
@@ -34,6 +36,35 @@ DisplacementMoments MomentsOf(const Associations& a, std::size_t s) {
   return m;
 }
 
+// B_y(d) = sum_a' Pw_y(a') K(d - a') at a displacement d that is not one of y's window samples
+// (y's window has another stride or centre than the cell's): summed directly over y's window,
+// separably (K is a product of two 1-D Gaussians). Exact, as the blurred table is where it
+// applies (FilterOptions::rigidity_exact_across_lattices).
+double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d, double r2) {
+  constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
+  const int n = w.size();
+  std::array<double, kMaxSide> kx{}, ky{};
+  const double inv_two_r2 = 1.0 / (2.0 * r2);
+  for (int u = 0; u < n; ++u) {
+    const double ex = d.ix - (w.center.ix + w.stride * (u - w.half));
+    const double ey = d.iy - (w.center.iy + w.stride * (u - w.half));
+    kx[static_cast<std::size_t>(u)] = std::exp(-ex * ex * inv_two_r2);
+    ky[static_cast<std::size_t>(u)] = std::exp(-ey * ey * inv_two_r2);
+  }
+  double sum = 0.0;
+  for (int v = 0; v < n; ++v) {
+    const double gy = ky[static_cast<std::size_t>(v)];
+    if (gy == 0.0) continue;
+    const float* row = p + static_cast<std::size_t>(v) * static_cast<std::size_t>(n);
+    double row_sum = 0.0;
+    for (int u = 0; u < n; ++u) {
+      row_sum += static_cast<double>(row[u]) * kx[static_cast<std::size_t>(u)];
+    }
+    sum += gy * row_sum;
+  }
+  return sum;
+}
+
 }  // namespace
 
 void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
@@ -57,11 +88,14 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
     });
   }
 
-  std::vector<DisplacementMoments> moments(a.SourceCount());
   // Each source's Pw blurred by the rigidity kernel on its own window lattice:
   // B_y(a) = sum_a' Pw(y moves by a') K(a - a'), separable (K is a product of two 1-D Gaussians),
   // O(M^3) per source. A linked neighbour whose window has the same lattice as the cell's enters
-  // through B_y exactly; otherwise through its two moments.
+  // through B_y exactly; otherwise through its two moments (a Gaussian in place of its pmf), or,
+  // with rigidity_exact_across_lattices, through B_y where the cell's displacement is one of y's
+  // samples and BlurAt where it is not.
+  std::vector<DisplacementMoments> moments(a.SourceCount());
+  const bool exact = options.rigidity_exact_across_lattices;
   std::vector<float> blurred(options.enable_rigidity_constraint ? a.EntryCount() : 0);
   const double r2 = options.rigidity_sigma_cells * options.rigidity_sigma_cells;
   if (options.enable_rigidity_constraint) {
@@ -70,7 +104,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
       std::size_t kernel_n = 0;
       int kernel_stride = 0;
       for (std::size_t s = begin; s < end; ++s) {
-        moments[s] = MomentsOf(a, s);
+        if (!exact) moments[s] = MomentsOf(a, s);
         const SearchWindow& w = a.window[s];
         const auto n = static_cast<std::size_t>(w.size());
         // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table, rebuilt only when
@@ -120,8 +154,11 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
   ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
     struct Link {
       double strength;
-      DisplacementMoments m;
-      const float* same_lattice_blurred;  // B_y when y's window lattice is the cell's, else null
+      const SearchWindow* window;  // y's
+      const float* weight;         // Pw_y over y's window
+      const float* blurred;        // B_y over y's window
+      const DisplacementMoments* moments;  // y's
+      bool same_lattice;                   // y's window has the cell's lattice
     };
     std::array<Link, kNeighbourCount> links;
     for (std::size_t s = begin; s < end; ++s) {
@@ -141,10 +178,10 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           const std::uint32_t y = workspace.source_of_cell[indexer.Storage(nx, ny)];
           if (y == FilterWorkspace::kNone) continue;
           const SearchWindow& wy = a.window[y];
-          const bool same_lattice = wy.center == a.window[s].center &&
-                                    wy.stride == a.window[s].stride && wy.half == a.window[s].half;
-          links[link_count++] =
-              Link{strength, moments[y], same_lattice ? &blurred[a.first_entry[y]] : nullptr};
+          const bool same_lattice = wy.center == w.center && wy.stride == w.stride &&
+                                    wy.half == w.half;
+          links[link_count++] = Link{strength, &wy, &a.weight[a.first_entry[y]],
+                                     &blurred[a.first_entry[y]], &moments[y], same_lattice};
         }
       }
       double sum = 0.0;
@@ -160,12 +197,16 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           for (std::size_t l = 0; l < link_count; ++l) {
             const Link& link = links[l];
             double agree = 0.0;
-            if (link.same_lattice_blurred != nullptr) {
-              agree = static_cast<double>(link.same_lattice_blurred[k]);
+            if (link.same_lattice) {
+              agree = static_cast<double>(link.blurred[k]);
+            } else if (exact) {
+              const std::int64_t ky = link.window->EntryOf(d);
+              agree = ky >= 0 ? static_cast<double>(link.blurred[static_cast<std::size_t>(ky)])
+                              : BlurAt(*link.window, link.weight, d, r2);
             } else {
-              const double var = r2 + link.m.variance_cells2;
-              const double ex = d.ix - link.m.mean_x_cells;
-              const double ey = d.iy - link.m.mean_y_cells;
+              const double var = r2 + link.moments->variance_cells2;
+              const double ex = d.ix - link.moments->mean_x_cells;
+              const double ey = d.iy - link.moments->mean_y_cells;
               agree = r2 / var * std::exp(-(ex * ex + ey * ey) / (2.0 * var));
             }
             p *= (1.0 - link.strength) + link.strength * agree;
