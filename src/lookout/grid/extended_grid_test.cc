@@ -486,7 +486,7 @@ TEST(ExtendedGridTest, RigidBodyMovesAsOne) {
 
 // The grid lives in the odometry frame: while the window follows an ego driving at 15 m/s
 // (and turning: only its position matters to the window), a static world stays static.
-// DISABLED, known limit: 296 of 572 occupied static cells in view read faster than 0.5 m/s with
+// DISABLED, known limit: 272 of 570 occupied static cells in view read faster than 0.5 m/s with
 // confidence >= known_confidence after 15 cycles (the bound is 1 %; 82 of 570 with the
 // paper's velocity form). Solid static boxes revealed by the window's leading edge find the rest
 // of their box on one side only, and inside a solid box nothing corrects the velocity that gives
