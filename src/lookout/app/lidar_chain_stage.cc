@@ -1,6 +1,8 @@
 #include "lookout/app/lidar_chain_stage.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "lookout/lidar/dynamic_segments.h"
 
@@ -80,11 +82,21 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
 void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& unmapped) {
   std::vector<Eigen::Vector2d> hits;
   std::vector<Eigen::Vector2d> free_ends;
+  std::vector<Eigen::Vector2d> empty_ends;
   hits.reserve(scan.ranges_m.size());
   const Eigen::Vector2d origin = scan.mount.translation;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const lidar::HitClass k = hits_.beam[i];
-    if (k == lidar::HitClass::kNoReturn) continue;
+    if (k == lidar::HitClass::kNoReturn) {
+      if (options_.no_return_clear_m > 0.0 && lidar::IsEmptyBeam(scan, i)) {
+        const double a = scan.BeamAngle(i);
+        const double r = scan.max_range_m > 0.0
+                             ? std::min(options_.no_return_clear_m, scan.max_range_m)
+                             : options_.no_return_clear_m;
+        empty_ends.push_back(scan.mount * Eigen::Vector2d(r * std::cos(a), r * std::sin(a)));
+      }
+      continue;
+    }
     const Eigen::Vector2d p = lidar::ReturnPoint(scan, i);
     const bool clears_only = options_.map_static_only &&
                              (k == lidar::HitClass::kDynamic || (!unmapped.empty() && unmapped[i]));
@@ -98,7 +110,7 @@ void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& un
       free_ends.push_back(origin + ray * ((r - options_.dynamic_ray_margin_m) / r));
     }
   }
-  localiser_.MapScan(scan, hits, free_ends);
+  localiser_.MapScan(scan, hits, free_ends, empty_ends);
 }
 
 }  // namespace lookout::app

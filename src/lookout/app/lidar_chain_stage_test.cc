@@ -63,6 +63,53 @@ TEST(LidarChainStage, BadRangesAreCountedNotClassified) {
   EXPECT_EQ(stage.last_hits().unknown_count, 98);  // an empty map knows nothing yet
 }
 
+// Beams that saw nothing (+inf, or the maximum range) clear their rays up to
+// no_return_clear_m, so that an actor first seen in that space is called dynamic; NaN and
+// negative beams clear nothing, and with the option at 0 nothing is cleared.
+TEST(LidarChainStage, EmptyBeamsClearTheirRaysUpToTheClearRange) {
+  const auto run = [](double clear_m) {
+    lidar::LidarChainOptions o;
+    o.no_return_clear_m = clear_m;
+    LidarChainStage stage(o);
+    for (int k = 0; k <= 40; ++k) stage.OnOdometry(Odometry(FromSeconds(0.02 * k), 0.0));
+    for (int k = 0; k < 3; ++k) {
+      LidarScan scan = FlatScan(FromSeconds(0.08 * (k + 1)));
+      for (float& r : scan.ranges_m) r = std::numeric_limits<float>::infinity();
+      scan.ranges_m[50] = 50.0f;                  // straight ahead: at the maximum range
+      // No measurement, and invalid: eleven beams each, so that no neighbour clears their rays.
+      for (std::size_t i = 5; i <= 15; ++i) scan.ranges_m[i] = std::nanf("");
+      for (std::size_t i = 85; i <= 95; ++i) scan.ranges_m[i] = -1.0f;
+      stage.OnLidar(scan);
+    }
+    return stage;
+  };
+  const LidarChainStage cleared = run(5.0);
+  const lidar::LocalMap& map = cleared.localiser().map();
+  const auto along = [](std::size_t beam, double r) {
+    const double a = FlatScan(0).BeamAngle(beam);
+    return Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
+  };
+  const float free = lidar::HitClassificationOptions{}.free_log_odds;
+  for (std::size_t beam : {std::size_t{0}, std::size_t{50}, std::size_t{100}}) {
+    EXPECT_LE(map.LogOdds(map.CellOf(along(beam, 3.0))), free) << "beam " << beam;
+    EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf(along(beam, 6.0))), 0.0f) << "beam " << beam;
+  }
+  for (std::size_t beam : {std::size_t{10}, std::size_t{90}}) {
+    EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf(along(beam, 3.0))), 0.0f) << "beam " << beam;
+  }
+  const LidarChainStage off = run(0.0);
+  EXPECT_FLOAT_EQ(off.localiser().map().LogOdds(map.CellOf(along(50, 3.0))), 0.0f);
+  // A return in the cleared space is dynamic; in the space never cleared, unknown.
+  LidarChainStage stage = run(5.0);
+  LidarScan scan = FlatScan(FromSeconds(0.32));
+  for (float& r : scan.ranges_m) r = std::numeric_limits<float>::infinity();
+  scan.ranges_m[50] = 3.0f;
+  scan.ranges_m[10] = 3.0f;
+  stage.OnLidar(scan);
+  EXPECT_EQ(stage.last_hits().beam[50], lidar::HitClass::kDynamic);
+  EXPECT_EQ(stage.last_hits().beam[10], lidar::HitClass::kUnknown);
+}
+
 // The default scenario's first 3 s: the localiser's pose follows the truth, in the odometry
 // frame (the ego's true pose at t = 0), to within a few centimetres, and hardly any return on
 // the static world (walls, parked cars, poles) is called dynamic once the map has begun.

@@ -25,6 +25,13 @@ bool IsReturn(const LidarScan& scan, std::size_t i, double min_range_m) {
   return std::isfinite(r) && r >= min_range_m && r < no_return;
 }
 
+bool IsEmptyBeam(const LidarScan& scan, std::size_t i) {
+  const double r = static_cast<double>(scan.ranges_m[i]);
+  if (std::isnan(r) || r < 0.0) return false;
+  if (std::isinf(r)) return true;
+  return scan.max_range_m > 0.0 && r >= scan.max_range_m * 0.999;
+}
+
 Eigen::Vector2d ReturnPoint(const LidarScan& scan, std::size_t i) {
   const double r = static_cast<double>(scan.ranges_m[i]);
   const double a = scan.BeamAngle(i);

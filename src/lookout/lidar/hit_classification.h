@@ -50,6 +50,11 @@ struct HitClassificationOptions {
 // maximum range (a range at max_range_m is the "no return" code of many scanners).
 bool IsReturn(const LidarScan& scan, std::size_t i, double min_range_m);
 
+// Whether beam i of `scan` saw nothing within the scanner's range: +infinity, or a range at
+// max_range_m (the same "no return" code IsReturn leaves out). NaN (no measurement) and
+// negative ranges are not empty beams: they say nothing of the space along them.
+bool IsEmptyBeam(const LidarScan& scan, std::size_t i);
+
 // The return of beam i in the vehicle frame (through scan.mount). Only for IsReturn beams.
 Eigen::Vector2d ReturnPoint(const LidarScan& scan, std::size_t i);
 

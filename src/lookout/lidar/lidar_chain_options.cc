@@ -41,6 +41,9 @@ void LidarChainOptions::Validate(const std::string& source) const {
   if (!std::isfinite(dynamic_ray_margin_m) || dynamic_ray_margin_m < 0.0) {
     throw InputError(source, 0, "dynamic_ray_margin_m", "must be finite and >= 0");
   }
+  if (!std::isfinite(no_return_clear_m) || no_return_clear_m < 0.0) {
+    throw InputError(source, 0, "no_return_clear_m", "must be finite and >= 0");
+  }
 }
 
 }  // namespace lookout::lidar

@@ -37,6 +37,12 @@ struct LidarChainOptions {
   // worse (docs/lidar-chain.md), since a wall segment with one false dynamic return then
   // stays out of the map and gives more of them.
   bool unmap_dynamic_segments = false;
+  // A beam with no return within the scanner's range (+inf, or at max_range_m) says the space
+  // along it is empty: it clears its ray up to this range (and the map's insert range), so
+  // that the open road an actor drives into has been seen free before the actor is on it.
+  // 0: no-return beams clear nothing, as in `lookout slam` (the CARMEN lasers' saturated codes
+  // and the glass of buildings). NaN, negative and too-near beams never clear.
+  double no_return_clear_m = 40.0;
 
   void Validate(const std::string& source = "lidar chain options") const;
 };

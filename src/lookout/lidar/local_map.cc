@@ -148,7 +148,8 @@ void LocalMap::UpdateCell(const CellIndex& c, bool hit) {
 
 // Bresenham's line from `from` to `to`: every cell before the last is a miss; the last is a
 // hit when the ray ended on a return.
-void LocalMap::Traverse(const CellIndex& from, const CellIndex& to, bool hit_at_end) {
+void LocalMap::Traverse(const CellIndex& from, const CellIndex& to, bool hit_at_end,
+                        bool stop_at_occupied) {
   int x = from.ix;
   int y = from.iy;
   const int dx = std::abs(to.ix - x);
@@ -157,7 +158,12 @@ void LocalMap::Traverse(const CellIndex& from, const CellIndex& to, bool hit_at_
   const int sy = y < to.iy ? 1 : -1;
   int err = dx + dy;
   while (x != to.ix || y != to.iy) {
-    if (InWindow({x, y})) UpdateCell({x, y}, false);
+    if (InWindow({x, y})) {
+      // Occupied as the scan began: a cell this scan's hits just raised is stamped already
+      // and unaffected either way; one they made occupied stops the ray too.
+      if (stop_at_occupied && Occupied({x, y})) return;
+      UpdateCell({x, y}, false);
+    }
     const int e2 = 2 * err;
     if (e2 >= dy) {
       err += dy;
@@ -168,7 +174,9 @@ void LocalMap::Traverse(const CellIndex& from, const CellIndex& to, bool hit_at_
       y += sy;
     }
   }
-  if (!hit_at_end && InWindow(to)) UpdateCell(to, false);
+  if (hit_at_end || !InWindow(to)) return;
+  if (stop_at_occupied && Occupied(to)) return;
+  UpdateCell(to, false);
 }
 
 Eigen::Vector2d LocalMap::ClipToRange(const Eigen::Vector2d& origin, const Eigen::Vector2d& p,
@@ -180,7 +188,8 @@ Eigen::Vector2d LocalMap::ClipToRange(const Eigen::Vector2d& origin, const Eigen
 }
 
 void LocalMap::InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::Vector2d> hits,
-                          std::span<const Eigen::Vector2d> free_ends) {
+                          std::span<const Eigen::Vector2d> free_ends,
+                          std::span<const Eigen::Vector2d> empty_ends) {
   ++current_stamp_;
   if (current_stamp_ == 0) {  // the counter wrapped: no stale stamp may equal a new one
     std::fill(stamp_.begin(), stamp_.end(), std::uint16_t{0});
@@ -207,6 +216,11 @@ void LocalMap::InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::
     bool clipped = false;
     const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
     Traverse(from, CellOf(end), false);
+  }
+  for (const Eigen::Vector2d& p : empty_ends) {
+    bool clipped = false;
+    const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
+    Traverse(from, CellOf(end), false, true);
   }
 
   for (const CellIndex& c : became_occupied_) LowerFieldAround(c);

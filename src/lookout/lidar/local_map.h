@@ -59,8 +59,13 @@ class LocalMap {
   // each point of `hits` ending in an occupied cell, and a ray to each point of `free_ends`
   // that only clears space (a beam with no return, or a hit beyond max_insert_range_m, which
   // is clipped to that range here, as are hits).
+  // `empty_ends`: rays of beams that saw nothing (no return within the scanner's range), which
+  // clear space only up to the first cell that is occupied at the start of the scan: a beam
+  // with no return through a mapped wall is the wall's return lost (glass, a dark surface, a
+  // dropout), not the wall gone.
   void InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::Vector2d> hits,
-                  std::span<const Eigen::Vector2d> free_ends);
+                  std::span<const Eigen::Vector2d> free_ends,
+                  std::span<const Eigen::Vector2d> empty_ends = {});
 
   float LogOdds(const CellIndex& c) const;  // 0 outside the window
   bool Occupied(const CellIndex& c) const { return LogOdds(c) > options_.occupied_log_odds; }
@@ -102,7 +107,8 @@ class LocalMap {
   void ResetCell(const CellIndex& c);
   // Applies one hit or miss to a cell not yet updated in this scan.
   void UpdateCell(const CellIndex& c, bool hit);
-  void Traverse(const CellIndex& from, const CellIndex& to, bool hit_at_end);
+  void Traverse(const CellIndex& from, const CellIndex& to, bool hit_at_end,
+                bool stop_at_occupied = false);
   void LowerFieldAround(const CellIndex& c);
   void RepairFieldAround(const CellIndex& c);
   float SearchDistance(const CellIndex& c) const;

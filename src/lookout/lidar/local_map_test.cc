@@ -119,6 +119,34 @@ TEST(LocalMap, HitsBeyondInsertRangeOnlyClear) {
   EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), 0.0f);
 }
 
+// A beam that saw nothing clears its ray only up to the first occupied cell: the mapped wall
+// it should have hit keeps its log-odds and the space behind the wall stays unknown; the
+// same ray as a free end (a dynamic return's) clears through.
+TEST(LocalMap, EmptyBeamsClearUpToTheFirstOccupiedCell) {
+  const MapOptions o = SmallMap();
+  LocalMap map(o);
+  const Eigen::Vector2d origin(0.05, 0.05);
+  const std::vector<Eigen::Vector2d> wall = {{3.05, 0.05}};
+  for (int i = 0; i < 3; ++i) map.InsertScan(origin, wall, {});
+  const float wall_before = map.LogOdds(map.CellOf({3.05, 0.05}));
+  ASSERT_TRUE(map.Occupied(map.CellOf({3.05, 0.05})));
+  const float before_wall = map.LogOdds(map.CellOf({1.55, 0.05}));
+  const std::vector<Eigen::Vector2d> empty = {{5.05, 0.05}, {0.05, 4.05}};
+  map.InsertScan(origin, {}, {}, empty);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({1.55, 0.05})), before_wall + o.log_odds_miss);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), wall_before);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({4.05, 0.05})), 0.0f);
+  // Nothing in the way: cleared to its end.
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({0.05, 2.05})), o.log_odds_miss);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({0.05, 4.05})), o.log_odds_miss);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({0.05, 4.55})), 0.0f);
+  const std::vector<Eigen::Vector2d> free_end = {{5.05, 0.05}};
+  map.InsertScan(origin, {}, free_end);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), wall_before + o.log_odds_miss);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({4.05, 0.05})), o.log_odds_miss);
+  ExpectFieldExact(map, "after the empty and free rays");
+}
+
 TEST(LocalMap, LikelihoodFieldMatchesBruteForceAsCellsAppearAndVanish) {
   const MapOptions o = SmallMap();
   LocalMap map(o);

@@ -148,7 +148,8 @@ void LidarLocaliser::Correct(std::span<const Eigen::Vector2d> points, const Pose
 }
 
 void LidarLocaliser::MapScan(const LidarScan& scan, std::span<const Eigen::Vector2d> hits,
-                             std::span<const Eigen::Vector2d> free_ends) {
+                             std::span<const Eigen::Vector2d> free_ends,
+                             std::span<const Eigen::Vector2d> empty_ends) {
   if (scans_.empty() || scans_.back().state.stamp != scan.stamp) return;
   const Pose2& pose = scans_.back().state.pose;
   map_.RecentreOn(pose.translation);
@@ -158,7 +159,10 @@ void LidarLocaliser::MapScan(const LidarScan& scan, std::span<const Eigen::Vecto
   std::vector<Eigen::Vector2d> free_map;
   free_map.reserve(free_ends.size());
   for (const Eigen::Vector2d& p : free_ends) free_map.push_back(pose * p);
-  map_.InsertScan(pose * scan.mount.translation, hits_map, free_map);
+  std::vector<Eigen::Vector2d> empty_map;
+  empty_map.reserve(empty_ends.size());
+  for (const Eigen::Vector2d& p : empty_ends) empty_map.push_back(pose * p);
+  map_.InsertScan(pose * scan.mount.translation, hits_map, free_map, empty_map);
 }
 
 std::optional<EgoState> LidarLocaliser::AddScan(const LidarScan& scan, const Pose2& odometry) {
