@@ -89,9 +89,9 @@ TEST(LidarChainStage, EmptyBeamsClearTheirRaysUpToTheClearRange) {
     const double a = FlatScan(0).BeamAngle(beam);
     return Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
   };
-  const float free = lidar::HitClassificationOptions{}.free_log_odds;
+  const float free_log_odds = lidar::HitClassificationOptions{}.free_log_odds;
   for (std::size_t beam : {std::size_t{0}, std::size_t{50}, std::size_t{100}}) {
-    EXPECT_LE(map.LogOdds(map.CellOf(along(beam, 3.0))), free) << "beam " << beam;
+    EXPECT_LE(map.LogOdds(map.CellOf(along(beam, 3.0))), free_log_odds) << "beam " << beam;
     EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf(along(beam, 6.0))), 0.0f) << "beam " << beam;
   }
   for (std::size_t beam : {std::size_t{10}, std::size_t{90}}) {
