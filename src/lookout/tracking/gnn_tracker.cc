@@ -89,8 +89,8 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
     t.state.mean = Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0);
     Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
     p.topLeftCorner<2, 2>() = d.covariance;
-    p.bottomRightCorner<2, 2>() =
-        Eigen::Matrix2d::Identity() * options_.initial_speed_sigma_mps * options_.initial_speed_sigma_mps;
+    const double sv = InitialSpeedSigma(options_, d.object_class, options_.initial_speed_sigma_mps);
+    p.bottomRightCorner<2, 2>() = Eigen::Matrix2d::Identity() * sv * sv;
     t.state.cov = p;
     tracks_.push_back(t);
   }

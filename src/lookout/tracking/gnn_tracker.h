@@ -29,7 +29,7 @@ namespace lookout::tracking {
 struct GnnOptions : TrackManagementOptions {
   double acceleration_psd = 2.0;        // CV process noise, m^2/s^3
   double gate_probability = 0.999;      // chi-square gate, 2 dof
-  double initial_speed_sigma_mps = 5.0; // velocity prior of a new track
+  double initial_speed_sigma_mps = 5.0; // velocity prior of a new track but a walker's
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "tracker options") const;

@@ -271,7 +271,8 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
       auto node = std::make_shared<Node>();
       node->tree = next_tree_++;
       node->track = BornTrack(options_.management, d, stamp);
-      const double sv = options_.initial_speed_sigma_mps;
+      const double sv =
+          InitialSpeedSigma(options_.management, d.object_class, options_.initial_speed_sigma_mps);
       Gaussian prior{Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0),
                      Eigen::Matrix4d::Zero()};
       prior.cov.topLeftCorner<2, 2>() = d.covariance;

@@ -54,7 +54,7 @@ struct MhtOptions {
   double turn_rate_rad_s = 0.3;
   double turn_accel_psd = 0.3;           // m^2/s^3
   double mode_stay_probability = 0.98;   // per scan; leaving to each other mode: (1 - stay) / 3
-  double initial_speed_sigma_mps = 5.0;  // velocity prior of a new track
+  double initial_speed_sigma_mps = 5.0;  // velocity prior of a new track (a walker's: management)
   double initial_acceleration_sigma_mps2 = 2.0;  // CA's acceleration prior
 
   // Hypothesis scores.

@@ -33,6 +33,13 @@ void TrackManagementOptions::Validate(const std::string& source) const {
           "min_existence_probability", "must be in [0, 0.5)");
   require(std::isfinite(existence_log_odds_limit) && existence_log_odds_limit > 0.0,
           "existence_log_odds_limit", "must be > 0");
+  require(std::isfinite(initial_speed_sigma_pedestrian_mps) &&
+              initial_speed_sigma_pedestrian_mps > 0.0,
+          "initial_speed_sigma_pedestrian_mps", "must be > 0");
+}
+
+double InitialSpeedSigma(const TrackManagementOptions& o, ObjectClass c, double others_mps) {
+  return c == ObjectClass::kPedestrian ? o.initial_speed_sigma_pedestrian_mps : others_mps;
 }
 
 double ExistenceAfter(const TrackManagementOptions& o, double log_odds, CameraEvidence e) {

@@ -48,10 +48,20 @@ struct TrackManagementOptions {
   double camera_ghost_probability = 0.05;
   double min_existence_probability = 0.05;
   double existence_log_odds_limit = 5.0;
+  // The velocity prior of a new walker's track (zero mean, this sigma per axis): people walk at
+  // 1-1.8 m/s and seldom run, where the trackers' general prior (5 m/s, for cars) lets a new
+  // walker's track take the first few scans' noise and a group's shifting centroid for 2-3 m/s
+  // of speed (docs/risk.md, pushchair-group). 1.5 m/s: a Rayleigh speed prior whose mode is a
+  // walking pace, a child running at 3 m/s 2 sigma out.
+  double initial_speed_sigma_pedestrian_mps = 1.5;
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "track management options") const;
 };
+
+// The sigma per axis of a new track's velocity prior for a detection of class `c`: the walker's
+// prior for pedestrians, `others_mps` (the tracker's own) for every other class. Pure.
+double InitialSpeedSigma(const TrackManagementOptions& options, ObjectClass c, double others_mps);
 
 // The consecutive misses `track` may have before it is deleted.
 int MaxMisses(const TrackManagementOptions& options, const Track& track);
