@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lookout/app/grid_stage.h"
+#include "lookout/app/wall_clock.h"
 #include "lookout/eval/statistics.h"
 #include "lookout/grid/reference_filter.h"
 #include "lookout/risk/junction_scene.h"
@@ -21,10 +22,6 @@ namespace lookout::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "lookout/app/wall_clock.h"
 #include "lookout/core/chi_square.h"
 #include "lookout/core/input_error.h"
 
@@ -14,10 +15,6 @@ namespace lookout::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::size_t ArgMax(const std::array<double, kAllObjectClasses.size()>& values) {
   std::size_t best = 0;

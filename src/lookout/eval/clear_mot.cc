@@ -6,15 +6,9 @@
 #include <vector>
 
 #include "lookout/assignment/linear_assignment.h"
+#include "lookout/eval/statistics.h"
 
 namespace lookout::eval {
-namespace {
-
-double Ratio(double numerator, double denominator) {
-  return denominator > 0.0 ? numerator / denominator : std::numeric_limits<double>::quiet_NaN();
-}
-
-}  // namespace
 
 double ClearMotCounts::Mota() const {
   return 1.0 - Ratio(static_cast<double>(misses + false_positives + switches),

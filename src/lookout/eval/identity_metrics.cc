@@ -5,15 +5,9 @@
 #include <limits>
 
 #include "lookout/assignment/linear_assignment.h"
+#include "lookout/eval/statistics.h"
 
 namespace lookout::eval {
-namespace {
-
-double Ratio(double numerator, double denominator) {
-  return denominator > 0.0 ? numerator / denominator : std::numeric_limits<double>::quiet_NaN();
-}
-
-}  // namespace
 
 double IdentityCounts::Idf1() const {
   return Ratio(2.0 * static_cast<double>(true_positives),

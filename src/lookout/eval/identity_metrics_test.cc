@@ -13,7 +13,7 @@
 namespace lookout::eval {
 namespace {
 
-constexpr double kNo = std::numeric_limits<double>::infinity();
+constexpr double kNoMatch = std::numeric_limits<double>::infinity();
 
 TEST(IdentityMetrics, OneTruthSplitBetweenTwoTracks) {
   // Truth 1 for 10 frames: track 5 covers frames 0-5, track 6 frames 6-9. The best single
@@ -78,7 +78,7 @@ TEST(IdentityMetrics, MatchesBruteForceOnRandomSequences) {
         for (std::size_t b = 0; b < f.hypothesis_ids.size(); ++b) {
           const bool close = rng.Bernoulli(0.4);
           f.distance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) =
-              close ? rng.Uniform() : kNo;
+              close ? rng.Uniform() : kNoMatch;
           if (close) {
             ++together[{static_cast<int>(f.truth_ids[a]), static_cast<int>(f.hypothesis_ids[b])}];
           }

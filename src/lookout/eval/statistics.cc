@@ -15,4 +15,8 @@ double Median(std::vector<double> values) {
   return 0.5 * (lower + upper);
 }
 
+double Ratio(double numerator, double denominator) {
+  return denominator > 0.0 ? numerator / denominator : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace lookout::eval

@@ -5,7 +5,7 @@
 namespace lookout::eval {
 namespace {
 
-std::vector<Eigen::Vector2d> Points(const std::vector<PointObject>& objects) {
+std::vector<Eigen::Vector2d> Positions(const std::vector<PointObject>& objects) {
   std::vector<Eigen::Vector2d> out;
   out.reserve(objects.size());
   for (const PointObject& o : objects) out.push_back(o.position_m);
@@ -20,7 +20,7 @@ TrackingMetricsAccumulator::TrackingMetricsAccumulator(const TrackingMetricOptio
 void TrackingMetricsAccumulator::AddFrame(const std::vector<PointObject>& truths,
                                           const std::vector<PointObject>& tracks) {
   evaluator_.AddFrame(DistanceFrame(truths, tracks, options_.match_distance_m));
-  const GospaResult g = Gospa(Points(truths), Points(tracks), options_.gospa);
+  const GospaResult g = Gospa(Positions(truths), Positions(tracks), options_.gospa);
   ++frames_;
   gospa_sum_ += g.distance;
   localisation_sum_ += g.localisation_pth;

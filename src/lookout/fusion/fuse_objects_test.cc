@@ -6,6 +6,7 @@
 #include <limits>
 #include <variant>
 
+#include "lookout/fusion/fusion_test_support.h"
 #include "lookout/fusion/gaussian_fusion.h"
 
 namespace lookout::fusion {
@@ -14,8 +15,8 @@ namespace {
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-const Pose2 kCameraMount(0.8, 0.0, 0.0);
-const Pose2 kLidarMount(2.2, 0.0, 0.0);
+using testing::kCameraMount;
+using testing::kLidarMount;
 
 LidarObject MakeLidar(std::uint32_t id, const Vector2d& point, bool dynamic = true) {
   LidarObject o;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "lookout/fusion/fusion_test_support.h"
 #include "lookout/stereo/oriented_box.h"
 
 namespace lookout::fusion {
@@ -14,8 +15,8 @@ namespace {
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-const Pose2 kCameraMount(0.8, 0.0, 0.0);
-const Pose2 kLidarMount(2.2, 0.0, 0.0);
+using testing::kCameraMount;
+using testing::kLidarMount;
 
 // The ego drives east at 10 m/s from the odometry origin; a car crosses northwards at 8 m/s,
 // 25 m ahead of where the ego starts. Everything exact (no noise), so the engine's stereo

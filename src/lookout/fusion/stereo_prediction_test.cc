@@ -5,14 +5,16 @@
 #include <cmath>
 #include <variant>
 
+#include "lookout/fusion/fusion_test_support.h"
+
 namespace lookout::fusion {
 namespace {
 
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-const Pose2 kCameraMount(0.8, 0.0, 0.0);
-const Pose2 kLidarMount(2.2, 0.0, 0.0);
+using testing::kCameraMount;
+using testing::kLidarMount;
 
 stereo::StereoPoint CrossingCar() {
   StereoObject o;

@@ -14,7 +14,8 @@ namespace {
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-void Require(bool ok, const std::string& source, const std::string& field, const char* problem) {
+void RequireObjectOption(bool ok, const std::string& source, const std::string& field,
+                         const char* problem) {
   if (!ok) throw InputError(source, 0, "grid.objects." + field, problem);
 }
 
@@ -55,14 +56,15 @@ Matrix2d Rotated(const Matrix2d& rotation, const Matrix2d& covariance) {
 }  // namespace
 
 void GridObjectOptions::Validate(const std::string& source) const {
-  Require(min_occupancy >= 0.5 && min_occupancy < 1.0, source, "min_occupancy",
-          "must be in [0.5, 1)");
-  Require(std::isfinite(min_speed_mps) && min_speed_mps >= 0.0, source, "min_speed_mps",
-          "must be finite and >= 0");
-  Require(min_velocity_confidence >= 0.0 && min_velocity_confidence <= 1.0, source,
-          "min_velocity_confidence", "must be in [0, 1]");
-  Require(min_link >= 0.0 && min_link < 1.0, source, "min_link", "must be in [0, 1)");
-  Require(min_cells >= 1, source, "min_cells", "must be >= 1");
+  RequireObjectOption(min_occupancy >= 0.5 && min_occupancy < 1.0, source, "min_occupancy",
+                      "must be in [0.5, 1)");
+  RequireObjectOption(std::isfinite(min_speed_mps) && min_speed_mps >= 0.0, source,
+                      "min_speed_mps", "must be finite and >= 0");
+  RequireObjectOption(min_velocity_confidence >= 0.0 && min_velocity_confidence <= 1.0, source,
+                      "min_velocity_confidence", "must be in [0, 1]");
+  RequireObjectOption(min_link >= 0.0 && min_link < 1.0, source, "min_link",
+                      "must be in [0, 1)");
+  RequireObjectOption(min_cells >= 1, source, "min_cells", "must be >= 1");
 }
 
 std::vector<std::uint8_t> DynamicCellMask(const GridLayers& layers, const FilterLayerIds& ids,

@@ -12,12 +12,12 @@ namespace {
 
 using Eigen::Vector2d;
 
-constexpr double kCellM = 0.15;
-constexpr double kDtS = 0.08;
+constexpr double kCellW = 0.15;
+constexpr double kTickS = 0.08;
 
 // A 30 m x 30 m window centred on the odometry frame's origin.
 ExtendedGrid MakeGrid() {
-  return ExtendedGrid(ScrollingGridGeometry(kCellM, 200, 200, {-100, -100}));
+  return ExtendedGrid(ScrollingGridGeometry(kCellW, 200, 200, {-100, -100}));
 }
 
 // An axis-aligned box in the odometry frame [lo, hi) (edges on cell boundaries in the tests, so
@@ -74,7 +74,7 @@ ObjectFrameContext Context(const Pose2& ego, const Pose2& mount) {
   c.stamp = 1'000'000'000;
   c.ego_pose = ego;
   c.lidar_mount = mount;
-  c.dt_s = kDtS;
+  c.dt_s = kTickS;
   return c;
 }
 
@@ -113,15 +113,15 @@ TEST(GridObjectsTest, TwoMovingBoxesGiveTwoObjectsInTheVehicleFrame) {
     EXPECT_NEAR(WrapAngle(o->yaw_rad - (heading_odom - ego.yaw)), 0.0, 1e-6);
     EXPECT_NEAR((o->velocity_mps - r * box.velocity_mps).norm(), 0.0, 1e-5);
     // Equal velocities: no spread, only the cell quantisation (cell / dt)^2 / 12.
-    const double q = (kCellM / kDtS) * (kCellM / kDtS) / 12.0;
+    const double q = (kCellW / kTickS) * (kCellW / kTickS) / 12.0;
     EXPECT_NEAR(o->velocity_covariance(0, 0), q, 1e-6);
     EXPECT_NEAR(o->velocity_covariance(1, 1), q, 1e-6);
     EXPECT_NEAR(o->velocity_covariance(0, 1), 0.0, 1e-6);
     // The point: the quantisation of a cell plus the box's spread over its 360 cells; the
     // spread along the 4.5 m side is 4.5^2 / 12 (a uniform box) up to the lattice.
-    EXPECT_GT(o->point_covariance.trace(), 2.0 * kCellM * kCellM / 12.0);
+    EXPECT_GT(o->point_covariance.trace(), 2.0 * kCellW * kCellW / 12.0);
     EXPECT_NEAR(o->point_covariance.trace(),
-                2.0 * kCellM * kCellM / 12.0 + (4.5 * 4.5 + 1.8 * 1.8) / 12.0 / 360.0, 2e-4);
+                2.0 * kCellW * kCellW / 12.0 + (4.5 * 4.5 + 1.8 * 1.8) / 12.0 / 360.0, 2e-4);
     EXPECT_NEAR(o->class_pmf[static_cast<std::size_t>(ObjectClass::kCar)], 0.8, 1e-6);
     double total = 0.0;
     for (const double p : o->class_pmf) total += p;
@@ -154,8 +154,8 @@ TEST(GridObjectsTest, ClusterWhoseLinksAreCutSplits) {
   GridLayers& layers = grid.mutable_layers();
   const FilterLayerIds& ids = grid.ids();
   ForCellsIn(grid, bus.lo, bus.hi, [&](std::size_t i, const Vector2d& c) {
-    const bool left = c.x() < 2.4 && c.x() > 2.4 - kCellM;
-    const bool right = c.x() > 2.4 && c.x() < 2.4 + kCellM;
+    const bool left = c.x() < 2.4 && c.x() > 2.4 - kCellW;
+    const bool right = c.x() > 2.4 && c.x() < 2.4 + kCellW;
     for (std::size_t d = 0; d < kNeighbourCount; ++d) {
       if ((left && kNeighbourOffsets[d].ix > 0) || (right && kNeighbourOffsets[d].ix < 0)) {
         layers.Values(ids.rigidity[d])[i] = 0.01f;  // below min_link
@@ -175,7 +175,7 @@ TEST(GridObjectsTest, ClusterWhoseLinksAreCutSplits) {
   // A link cut on one side only still joins (the larger of the two links counts).
   Seed(grid, bus);
   ForCellsIn(grid, bus.lo, bus.hi, [&](std::size_t i, const Vector2d& c) {
-    if (c.x() < 2.4 && c.x() > 2.4 - kCellM) {
+    if (c.x() < 2.4 && c.x() > 2.4 - kCellW) {
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
         if (kNeighbourOffsets[d].ix > 0) layers.Values(ids.rigidity[d])[i] = 0.0f;
       }
@@ -190,7 +190,7 @@ TEST(GridObjectsTest, FrontSegmentFacesTheLidar) {
     SeededBox box;
     Vector2d start, end;  // the cells at the lowest and the highest bearing
   };
-  const double h = kCellM / 2.0;
+  const double h = kCellW / 2.0;
   const std::vector<Case> cases = {
       {SeededBox{{10.05, -0.9}, {14.55, 0.9}, {-5.0, 0.0}}, {10.05 + h, -0.9 + h},
        {10.05 + h, 0.9 - h}},
@@ -259,12 +259,12 @@ MeasurementGrid MeasureBox(const ScrollingGridGeometry& g, const Vector2d& lo, c
 TEST(GridObjectsTest, BoxTrackedByTheFilterBecomesOneObject) {
   // The filter itself, not a seeded state: a 0.9 m x 0.6 m box at 3.75 m/s (the filter test's
   // MovingBoxVelocityConvergesFromRest), 25 cycles.
-  ExtendedGrid grid(ScrollingGridGeometry(kCellM, 128, 24, {0, 0}));
+  ExtendedGrid grid(ScrollingGridGeometry(kCellW, 128, 24, {0, 0}));
   const Vector2d v(3.75, 0.0), size(0.9, 0.6), start(0.9, 1.5);
   Vector2d lo = start;
   for (int k = 0; k < 25; ++k) {
-    lo = start + v * (k * kDtS);
-    grid.Update(MeasureBox(grid.geometry(), lo, lo + size), kDtS);
+    lo = start + v * (k * kTickS);
+    grid.Update(MeasureBox(grid.geometry(), lo, lo + size), kTickS);
   }
   const LidarObjectFrame frame = ExtractGridObjects(grid, Context(Pose2(), Pose2()), {});
   int dynamic = 0;

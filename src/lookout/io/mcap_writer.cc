@@ -65,36 +65,38 @@ std::uint64_t CheckedTime(TimeNs t, std::string_view what) {
   return static_cast<std::uint64_t>(t);
 }
 
-struct MessageIndexEntry {
-  std::uint64_t log_time = 0;
-  std::uint64_t offset = 0;  // from the start of the chunk's uncompressed records
-};
-
-struct ChunkIndex {
-  std::uint64_t message_start_time = 0;
-  std::uint64_t message_end_time = 0;
-  std::uint64_t chunk_start_offset = 0;
-  std::uint64_t chunk_length = 0;
-  std::map<std::uint16_t, std::uint64_t> message_index_offsets;
-  std::uint64_t message_index_length = 0;
-  std::uint64_t compressed_size = 0;
-  std::uint64_t uncompressed_size = 0;
-};
-
-// Earliest and latest log time of a set of messages; MCAP writes 0 and 0 for no messages.
-struct TimeRange {
-  std::uint64_t start = std::numeric_limits<std::uint64_t>::max();
-  std::uint64_t end = 0;
-  void Add(std::uint64_t t) {
-    start = std::min(start, t);
-    end = std::max(end, t);
-  }
-  std::uint64_t start_or_zero() const { return start <= end ? start : 0; }
-};
-
 }  // namespace
 
 class McapWriter::Impl {
+  // Nested rather than in the anonymous namespace: the members of a class the header declares
+  // should not have types of internal linkage (GCC's -Wsubobject-linkage, in a unity build).
+  struct MessageIndexEntry {
+    std::uint64_t log_time = 0;
+    std::uint64_t offset = 0;  // from the start of the chunk's uncompressed records
+  };
+
+  struct ChunkIndex {
+    std::uint64_t message_start_time = 0;
+    std::uint64_t message_end_time = 0;
+    std::uint64_t chunk_start_offset = 0;
+    std::uint64_t chunk_length = 0;
+    std::map<std::uint16_t, std::uint64_t> message_index_offsets;
+    std::uint64_t message_index_length = 0;
+    std::uint64_t compressed_size = 0;
+    std::uint64_t uncompressed_size = 0;
+  };
+
+  // Earliest and latest log time of a set of messages; MCAP writes 0 and 0 for no messages.
+  struct TimeRange {
+    std::uint64_t start = std::numeric_limits<std::uint64_t>::max();
+    std::uint64_t end = 0;
+    void Add(std::uint64_t t) {
+      start = std::min(start, t);
+      end = std::max(end, t);
+    }
+    std::uint64_t start_or_zero() const { return start <= end ? start : 0; }
+  };
+
  public:
   Impl(std::string path, McapWriterOptions options)
       : path_(std::move(path)), part_path_(path_ + ".part"), options_(std::move(options)) {

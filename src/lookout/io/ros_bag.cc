@@ -95,7 +95,7 @@ class Fields {
   std::map<std::string_view, std::string_view, std::less<>> fields_;
 };
 
-struct Record {
+struct BagRecord {
   std::uint8_t op = 0;
   Fields header;
   std::string_view data;
@@ -104,7 +104,7 @@ struct Record {
 
 // The record at `position` of `bytes`, or nullopt when `bytes` ends inside it. Throws
 // RecordError when its header does not parse.
-std::optional<Record> ReadRecord(std::string_view bytes, std::uint64_t position) {
+std::optional<BagRecord> ReadRecord(std::string_view bytes, std::uint64_t position) {
   if (position > bytes.size()) return std::nullopt;
   std::string_view rest = bytes.substr(static_cast<std::size_t>(position));
   if (rest.size() < 4) return std::nullopt;
@@ -117,12 +117,12 @@ std::optional<Record> ReadRecord(std::string_view bytes, std::uint64_t position)
   rest.remove_prefix(4);
   if (data_length > rest.size()) return std::nullopt;
   const std::string_view op = header.Bytes("op", 1);
-  return Record{static_cast<std::uint8_t>(op.front()), std::move(header),
+  return BagRecord{static_cast<std::uint8_t>(op.front()), std::move(header),
                 rest.substr(0, data_length),
                 position + 8 + std::uint64_t{header_length} + data_length};
 }
 
-RosConnection ParseConnection(const Record& record) {
+RosConnection ParseConnection(const BagRecord& record) {
   RosConnection c;
   c.id = record.header.U32("conn");
   c.topic = record.header.String("topic");
@@ -235,7 +235,7 @@ RosBag::RosBag(std::string bytes, std::string source)
   if (std::string_view(bytes_).substr(0, kMagic.size()) != kMagic) {
     Refuse(source_, 0, "magic", "not a ROS1 bag v2.0: the file does not start with '#ROSBAG V2.0'");
   }
-  std::optional<Record> header;
+  std::optional<BagRecord> header;
   try {
     header = ReadRecord(bytes_, kMagic.size());
     if (!header) Refuse(source_, kMagic.size(), "bag header", "the file ends inside the bag header");
@@ -276,7 +276,7 @@ bool RosBag::ReadIndex(std::uint64_t index_position, std::uint32_t connection_co
   std::uint64_t position = index_position;
   try {
     while (position < bytes_.size()) {
-      const std::optional<Record> record = ReadRecord(bytes_, position);
+      const std::optional<BagRecord> record = ReadRecord(bytes_, position);
       if (!record) throw RecordError{"index", "the file ends inside an index record"};
       if (record->op == kOpConnection) {
         RosConnection connection = ParseConnection(*record);
@@ -334,7 +334,7 @@ bool RosBag::ReadIndex(std::uint64_t index_position, std::uint32_t connection_co
 void RosBag::ScanRecords(std::uint64_t first_record) {
   std::uint64_t position = first_record;
   while (position < bytes_.size()) {
-    std::optional<Record> record;
+    std::optional<BagRecord> record;
     try {
       record = ReadRecord(bytes_, position);
       if (!record) {
@@ -387,7 +387,7 @@ void RosBag::VisitChunk(const ChunkRef& chunk, const Visitor& visit,
   std::vector<RosConnection> new_connections;
   std::uint64_t inner = 0;
   try {
-    const std::optional<Record> record = ReadRecord(bytes_, chunk.position);
+    const std::optional<BagRecord> record = ReadRecord(bytes_, chunk.position);
     if (!record) throw RecordError{"chunk", "the file ends inside it"};
     if (record->op != kOpChunk) {
       throw RecordError{"chunk.op", fmt::format("is {}, not 5 (a chunk)", record->op)};
@@ -397,7 +397,7 @@ void RosBag::VisitChunk(const ChunkRef& chunk, const Visitor& visit,
     if (!d.problem.empty()) throw RecordError{"chunk.data", d.problem};
     records = std::move(d.records);
     while (inner < records.size()) {
-      const std::optional<Record> r = ReadRecord(records, inner);
+      const std::optional<BagRecord> r = ReadRecord(records, inner);
       if (!r) throw RecordError{"chunk record", "runs past the chunk's end"};
       if (r->op == kOpMessageData) {
         const char* time = r->header.Bytes("time", 8).data();

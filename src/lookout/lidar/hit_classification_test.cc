@@ -11,7 +11,7 @@
 namespace lookout::lidar {
 namespace {
 
-MapOptions SmallMap() {
+MapOptions HitTestMap() {
   MapOptions o;
   o.cell_size_m = 0.1;
   o.window_cells = 256;  // 25.6 m, centred on the origin
@@ -23,7 +23,7 @@ MapOptions SmallMap() {
 // beams every 0.5 degree over +-25 degrees. Before the wall the map saw free space, at the
 // wall occupied, behind it and outside the fan nothing.
 LocalMap WallMap() {
-  LocalMap map(SmallMap());
+  LocalMap map(HitTestMap());
   std::vector<Eigen::Vector2d> hits;
   for (double a = -25.0; a <= 25.0; a += 0.5) {
     const double rad = a * kPi / 180.0;

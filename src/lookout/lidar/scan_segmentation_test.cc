@@ -20,7 +20,7 @@ constexpr double kDeg = kPi / 180.0;
 using testing::CastScan;
 
 // Two boxes (a car seen on its rear and its side, a van turned), a wall and a pole.
-std::vector<sim::Shape> Scene() {
+std::vector<sim::Shape> SegmentationScene() {
   const int s = sim::kStaticOwner;
   return {
       sim::Shape::Box(Pose2(10.0, 3.0, 0.0), 4.5, 1.8, s),      // car: rear faces the lidar
@@ -45,7 +45,7 @@ const LidarObject* Nearest(const LidarObjectFrame& f, const Eigen::Vector2d& p) 
 }
 
 TEST(ScanSegmentation, TwoBoxesAWallAndAPoleAreFourObjects) {
-  const LidarScan scan = CastScan(Scene());
+  const LidarScan scan = CastScan(SegmentationScene());
   SegmentationStats stats;
   const LidarObjectFrame f = SegmentScan(scan, {}, Pose2(1.0, 2.0, 0.3), KeepAll(), 0.1, &stats);
   ASSERT_EQ(f.objects.size(), 4u);
@@ -137,7 +137,7 @@ TEST(ScanSegmentation, AHiddenEndWidensThePointAlongTheSide) {
 }
 
 TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
-  const LidarScan scan = CastScan(Scene());
+  const LidarScan scan = CastScan(SegmentationScene());
   std::vector<HitClass> classes(scan.ranges_m.size(), HitClass::kNoReturn);
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     if (std::isfinite(scan.ranges_m[i])) classes[i] = HitClass::kStatic;

@@ -4,19 +4,13 @@
 
 #include <cmath>
 
+#include "lookout/risk/risk_test_support.h"
+
 namespace lookout::risk {
 namespace {
 
-constexpr double kDt = 0.1;
-
-FootprintTrack Straight(const Eigen::Vector2d& start, const Eigen::Vector2d& velocity,
-                        double radius, double horizon_s = 5.0) {
-  FootprintTrack t;
-  for (int k = 0; k * kDt <= horizon_s + 1e-9; ++k) {
-    t.push_back(Footprint::Circle(start + velocity * (k * kDt), radius));
-  }
-  return t;
-}
+using testing::kDt;
+using testing::Straight;
 
 // A box moving along its length at `velocity`.
 FootprintTrack StraightBox(const Eigen::Vector2d& start, const Eigen::Vector2d& velocity,

@@ -5,17 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "lookout/risk/risk_test_support.h"
+
 namespace lookout::risk {
 namespace {
 
-constexpr double kDt = 0.1;
-
-FootprintTrack Straight(const Eigen::Vector2d& start, const Eigen::Vector2d& velocity,
-                        double radius) {
-  FootprintTrack t;
-  for (int k = 0; k <= 50; ++k) t.push_back(Footprint::Circle(start + velocity * (k * kDt), radius));
-  return t;
-}
+using testing::kDt;
+using testing::Straight;
 
 // Head-on with only the lateral position uncertain (sigma): the circles meet iff |dy| <= the
 // radii's sum r, so P = erf(r / (sigma sqrt 2)). 20000 samples: within 4 standard errors.

@@ -27,8 +27,6 @@ constexpr double kOnLineTolerance_m = 1e-9;
 // culling can never drop a hit that the analytic test would keep.
 constexpr double kCullMargin_m = 1e-9;
 
-double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Beam directions: sines and cosines dominate a cast if taken per beam, so beam i = 32 q + r
 // is the first beam's direction turned by 32 q increments, then by r increments: 32 + count/32
 // sine-cosine pairs per fan instead of count. Each turn adds about one ulp of error.

@@ -11,8 +11,6 @@ namespace {
 
 using Eigen::Vector2d;
 
-double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Twice the signed area of triangle (a, b, c): > 0 when c is left of the directed line a->b,
 // < 0 right of it, 0 on it.
 double Orient(const Vector2d& a, const Vector2d& b, const Vector2d& c) {
