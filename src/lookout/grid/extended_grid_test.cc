@@ -194,6 +194,15 @@ LayerDiff RunAgainstReference(std::uint64_t seed, const FilterOptions& options) 
   return Compare(w.grid, reference);
 }
 
+// Where every stage is the literal equation, fast and reference differ by float rounding only.
+void ExpectMatchesReference(const LayerDiff& d) {
+  EXPECT_LT(d.occupancy, 1e-4);
+  EXPECT_LT(d.seen, 1e-4);
+  EXPECT_LT(d.velocity_mps, 1e-3);
+  EXPECT_LT(d.confidence, 1e-4);
+  EXPECT_LT(d.rigidity, 1e-4);
+}
+
 // Exact stages (everything but the factorised rigidity term): float vs double only.
 TEST(ExtendedGridReferenceTest, FastPathMatchesLiteralReference) {
   FilterOptions options;
@@ -201,11 +210,7 @@ TEST(ExtendedGridReferenceTest, FastPathMatchesLiteralReference) {
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const LayerDiff d = RunAgainstReference(seed, options);
-    EXPECT_LT(d.occupancy, 1e-4);
-    EXPECT_LT(d.seen, 1e-4);
-    EXPECT_LT(d.velocity_mps, 1e-3);
-    EXPECT_LT(d.confidence, 1e-4);
-    EXPECT_LT(d.rigidity, 1e-4);
+    ExpectMatchesReference(d);
   }
 }
 
@@ -248,11 +253,7 @@ TEST(ExtendedGridReferenceTest, ExactRigidityMatchesLiteralReference) {
     for (std::uint64_t seed = 1; seed <= 8; ++seed) {
       SCOPED_TRACE("seed " + std::to_string(seed) + (tracked ? " tracked" : " mixed"));
       const LayerDiff d = RunAgainstReference(seed, options);
-      EXPECT_LT(d.occupancy, 1e-4);
-      EXPECT_LT(d.seen, 1e-4);
-      EXPECT_LT(d.velocity_mps, 1e-3);
-      EXPECT_LT(d.confidence, 1e-4);
-      EXPECT_LT(d.rigidity, 1e-4);
+      ExpectMatchesReference(d);
     }
   }
 }
