@@ -32,6 +32,9 @@ struct LidarScan {
   double BeamAngle(std::size_t i) const {
     return angle_min_rad + static_cast<double>(i) * angle_increment_rad;
   }
+  // Ranges at or beyond this are "no return": many scanners report a beam that saw nothing as
+  // their maximum range, so a hair under max_range_m counts too; no limit when it is unset.
+  double NoReturnRangeM() const { return max_range_m > 0.0 ? max_range_m * 0.999 : 1e300; }
 };
 
 // An object reported by the stereo camera, in the camera frame (x forward along the optical

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lookout/core/planar_geometry.h"
 #include "lookout/sim/shapes.h"
 
 namespace lookout::eval {
@@ -49,13 +50,6 @@ double SquaredNorm(float x, float y) {
   return dx * dx + dy * dy;
 }
 
-double SegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
-  const Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
-
 // The footprint's reference point for "is the actor inside the grid".
 Vector2d ShapeCentre(const sim::Shape& shape) {
   if (shape.kind == sim::Shape::Kind::kCircle) return shape.center;
@@ -80,7 +74,7 @@ double DistanceToShape(const sim::Shape& shape, const Vector2d& p) {
   double best = std::numeric_limits<double>::infinity();
   const std::size_t n = shape.vertices.size();
   for (std::size_t i = 0; i < n; ++i) {
-    best = std::min(best, SegmentDistance(p, shape.vertices[i], shape.vertices[(i + 1) % n]));
+    best = std::min(best, PointToSegment(p, shape.vertices[i], shape.vertices[(i + 1) % n]));
   }
   return best;
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lookout/core/planar_geometry.h"
+
 namespace lookout::grid {
 namespace {
 
@@ -16,19 +18,6 @@ constexpr std::size_t kUnknown = static_cast<std::size_t>(GridClass::kUnknown);
 double Soft(double v, double lo, double hi, double s) {
   const double excess = v < lo ? lo - v : (v > hi ? v - hi : 0.0);
   return std::exp(-excess * excess / (2.0 * s * s));
-}
-
-bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool inside = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
 }
 
 }  // namespace

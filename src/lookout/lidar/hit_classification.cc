@@ -20,16 +20,14 @@ void HitClassificationOptions::Validate(const std::string& source) const {
 
 bool IsReturn(const LidarScan& scan, std::size_t i, double min_range_m) {
   const double r = static_cast<double>(scan.ranges_m[i]);
-  // The same "no return" rule as ExtractScanPoints (scan_matcher.cc): a hair under the maximum.
-  const double no_return = scan.max_range_m > 0.0 ? scan.max_range_m * 0.999 : 1e300;
-  return std::isfinite(r) && r >= min_range_m && r < no_return;
+  return std::isfinite(r) && r >= min_range_m && r < scan.NoReturnRangeM();
 }
 
 bool IsEmptyBeam(const LidarScan& scan, std::size_t i) {
   const double r = static_cast<double>(scan.ranges_m[i]);
   if (std::isnan(r) || r < 0.0) return false;
   if (std::isinf(r)) return true;
-  return scan.max_range_m > 0.0 && r >= scan.max_range_m * 0.999;
+  return scan.max_range_m > 0.0 && r >= scan.NoReturnRangeM();
 }
 
 Eigen::Vector2d ReturnPoint(const LidarScan& scan, std::size_t i) {

@@ -153,16 +153,14 @@ void LidarLocaliser::MapScan(const LidarScan& scan, std::span<const Eigen::Vecto
   if (scans_.empty() || scans_.back().state.stamp != scan.stamp) return;
   const Pose2& pose = scans_.back().state.pose;
   map_.RecentreOn(pose.translation);
-  std::vector<Eigen::Vector2d> hits_map;
-  hits_map.reserve(hits.size());
-  for (const Eigen::Vector2d& p : hits) hits_map.push_back(pose * p);
-  std::vector<Eigen::Vector2d> free_map;
-  free_map.reserve(free_ends.size());
-  for (const Eigen::Vector2d& p : free_ends) free_map.push_back(pose * p);
-  std::vector<Eigen::Vector2d> empty_map;
-  empty_map.reserve(empty_ends.size());
-  for (const Eigen::Vector2d& p : empty_ends) empty_map.push_back(pose * p);
-  map_.InsertScan(pose * scan.mount.translation, hits_map, free_map, empty_map);
+  const auto to_map = [&pose](std::span<const Eigen::Vector2d> points) {
+    std::vector<Eigen::Vector2d> out;
+    out.reserve(points.size());
+    for (const Eigen::Vector2d& p : points) out.push_back(pose * p);
+    return out;
+  };
+  map_.InsertScan(pose * scan.mount.translation, to_map(hits), to_map(free_ends),
+                  to_map(empty_ends));
 }
 
 std::optional<EgoState> LidarLocaliser::AddScan(const LidarScan& scan, const Pose2& odometry) {

@@ -98,7 +98,7 @@ std::vector<double> AnglesAround(double centre, double half_width, double step) 
 ScanPoints ExtractScanPoints(const LidarScan& scan, const MatcherOptions& options) {
   ScanPoints out;
   out.all.reserve(scan.ranges_m.size());
-  const double no_return = scan.max_range_m > 0.0 ? scan.max_range_m * 0.999 : 1e300;
+  const double no_return = scan.NoReturnRangeM();
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const double r = static_cast<double>(scan.ranges_m[i]);
     if (!std::isfinite(r) || r < options.min_range_m || r >= no_return) continue;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "lookout/core/planar_geometry.h"
+
 namespace lookout::risk {
 namespace {
 
@@ -31,14 +33,6 @@ std::array<Eigen::Vector2d, 4> Corners(const Footprint& f) {
   const Eigen::Vector2d l = f.half_length_m * f.axis;
   const Eigen::Vector2d w = f.half_width_m * Normal(f.axis);
   return {f.centre_m + l + w, f.centre_m - l + w, f.centre_m - l - w, f.centre_m + l - w};
-}
-
-double PointToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                      const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double u = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + u * ab)).norm();
 }
 
 // The signed distance between the two rectangles (radii left out). Separating axes: the
