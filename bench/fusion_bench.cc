@@ -5,8 +5,8 @@
 // in docs/PERFORMANCE.md.
 //
 // The scene: N objects spread over the camera's field (70 degrees, 3 to 35 m), each seen by
-// the camera and, 0.1 m from the camera's point, by the lidar, so that every stereo object has its partner and
-// its neighbours in the gate; fixed seed.
+// the camera and, 0.1 m from the camera's point, by the lidar, so that every stereo object has its
+// partner and its neighbours in the gate; fixed seed.
 
 #include <benchmark/benchmark.h>
 

@@ -173,7 +173,8 @@ std::vector<float> AllLayers(const ExtendedGrid& grid) {
 
 // The timed call, out of line so that a profiler can count exactly the timed updates
 // (valgrind --tool=callgrind --toggle-collect='*TimedSimJunctionUpdate*').
-[[gnu::noinline]] void TimedSimJunctionUpdate(ExtendedGrid& grid, const app::GridCycleInput& input) {
+[[gnu::noinline]] void TimedSimJunctionUpdate(ExtendedGrid& grid,
+                                              const app::GridCycleInput& input) {
   grid.Update(input.z, input.dt_s);
 }
 
@@ -218,7 +219,10 @@ void BM_ReferenceUpdateSimJunction(benchmark::State& state) {
   after.Update(input.z, input.dt_s);
   Counters(state, after);
 }
-BENCHMARK(BM_ReferenceUpdateSimJunction)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_ReferenceUpdateSimJunction)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
 
 // The side-by-side pair on a 100 x 100 window (15 m, centred on the junction) of the same scene.
 constexpr int kSmallSide = 100;

@@ -96,7 +96,9 @@ void MeasureInverseSensorModel(benchmark::State& state, const BenchScene& scene)
   state.SetLabel("items = beams");
 }
 
-void BM_InverseSensorModel(benchmark::State& state) { MeasureInverseSensorModel(state, MakeScene()); }
+void BM_InverseSensorModel(benchmark::State& state) {
+  MeasureInverseSensorModel(state, MakeScene());
+}
 BENCHMARK(BM_InverseSensorModel)->Unit(benchmark::kMicrosecond);
 
 // The pure function: allocates and fills the 160,000-cell grid each call.

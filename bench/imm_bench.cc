@@ -15,9 +15,10 @@ struct Fixture {
   ImmState state;
 
   Fixture() {
-    state = InitImm(options,
-                    {Eigen::Vector4d(0.0, 0.0, 10.0, 0.0), Eigen::Vector4d(100, 100, 4, 4).asDiagonal()},
-                    {kX, kY, kVx, kVy}, 1.0, 0);
+    state = InitImm(
+        options,
+        {Eigen::Vector4d(0.0, 0.0, 10.0, 0.0), Eigen::Vector4d(100, 100, 4, 4).asDiagonal()},
+        {kX, kY, kVx, kVy}, 1.0, 0);
     // A few cycles so that the modes differ, as in a running track.
     for (int k = 1; k <= 5; ++k) {
       state = PredictTo(options, state, k * kNanosPerSecond);

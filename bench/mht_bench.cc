@@ -44,14 +44,15 @@ void TimeStep(benchmark::State& s, const T& warm) {
 template <typename T>
 T WarmedUp(T tracker) {
   for (int k = 0; k < kWarmUpScans; ++k) {
-    tracker.Step(Scene().stamps[static_cast<std::size_t>(k)], Scene().scans[static_cast<std::size_t>(k)]);
+    tracker.Step(Scene().stamps[static_cast<std::size_t>(k)],
+                 Scene().scans[static_cast<std::size_t>(k)]);
   }
   return tracker;
 }
 
 void BM_MhtStep(benchmark::State& s) {
-  const MhtTracker warm =
-      WarmedUp(MhtTracker(BenchOptions(static_cast<int>(s.range(0)), static_cast<int>(s.range(1)))));
+  const MhtTracker warm = WarmedUp(
+      MhtTracker(BenchOptions(static_cast<int>(s.range(0)), static_cast<int>(s.range(1)))));
   TimeStep(s, warm);
   s.counters["hypotheses"] = static_cast<double>(warm.HypothesisProbabilities().size());
   s.counters["track_hypotheses"] = static_cast<double>(warm.TrackHypothesisCount());

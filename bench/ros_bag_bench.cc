@@ -17,8 +17,8 @@
 namespace {
 
 const std::string& ZipPath() {
-  static const std::string path =
-      std::string(LOOKOUT_SOURCE_DIR) + "/../shared/data/legtracker/general_tracking_moving_1.bag.zip";
+  static const std::string path = std::string(LOOKOUT_SOURCE_DIR) +
+                                  "/../shared/data/legtracker/general_tracking_moving_1.bag.zip";
   return path;
 }
 

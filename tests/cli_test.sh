@@ -14,7 +14,8 @@ case "$case_name" in
     "$lookout" run --out "$work/out" >"$work/stdout"
     [[ -s "$work/out/recording.mcap" ]] || fail "no recording"
     [[ -s "$work/out/metrics.json" ]] || fail "no metrics.json"
-    grep -q '"scenario": "left-turn-across-path"' "$work/out/metrics.json" || fail "metrics.json scenario"
+    grep -q '"scenario": "left-turn-across-path"' "$work/out/metrics.json" ||
+      fail "metrics.json scenario"
     grep -q '"timing.frames": 151' "$work/out/metrics.json" || fail "timing.frames should be 151"
     for word in scenario simulated frames messages warnings "wall time" "real time" recording; do
       grep -q "^$word" "$work/stdout" || fail "summary lacks '$word'"
@@ -50,7 +51,8 @@ case "$case_name" in
     code=$?
     set -e
     [[ $code == 2 ]] || fail "exit code $code, expected 2"
-    grep -q "broken.yaml:3: duration" "$work/stderr" || fail "message lacks file:line: field: $(cat "$work/stderr")"
+    grep -q "broken.yaml:3: duration" "$work/stderr" ||
+      fail "message lacks file:line: field: $(cat "$work/stderr")"
     [[ $(wc -l <"$work/stderr") == 1 ]] || fail "more than one line on stderr"
     [[ ! -e "$work/out" ]] || fail "output written for a bad scenario"
     ;;

@@ -96,7 +96,8 @@ case "$case_name" in
     awk -v s="$share" 'BEGIN { exit !(s >= 0 && s <= 1) }' || fail "share $share"
     # The lidar chain's segments are scored beside the grid's objects, on the same positions;
     # 0.373 measured on 2026-12-01 (docs/replay.md): a detector that loses the people fails.
-    [[ $(json_value "$m" metrics people.segmentation.positions) == 153 ]] || fail "segments: not 153"
+    [[ $(json_value "$m" metrics people.segmentation.positions) == 153 ]] ||
+      fail "segments: not 153"
     share=$(json_value "$m" metrics people.segmentation.dynamic_share)
     awk -v s="$share" 'BEGIN { exit !(s >= 0.1 && s <= 1) }' || fail "segment share $share"
     node "$node_dir/read_mcap.mjs" "$work/out/recording.mcap" >"$work/read.json"

@@ -43,7 +43,8 @@ case "$case_name" in
       "$lookout" slam "$src/../shared/data/carmen/$name-corrected.log.gz" >"$work/$name.out"
       ate=$(awk '$1 == "ate" { print $2 }' "$work/$name.out")
       echo "$name: ATE $ate m"
-      awk -v a="$ate" 'BEGIN { exit !(a != "" && a <= 0.2) }' || fail "$name: ATE $ate m above 0.2 m"
+      awk -v a="$ate" 'BEGIN { exit !(a != "" && a <= 0.2) }' ||
+        fail "$name: ATE $ate m above 0.2 m"
     done
     ;;
   bad_input)

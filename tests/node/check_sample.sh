@@ -11,11 +11,13 @@ sample_writer="${1:?usage: check_sample.sh PATH/TO/lookout_mcap_sample}"
 
 # Missing tools fail rather than skip: a skipped check would let an unreadable file land.
 if ! command -v node >/dev/null 2>&1; then
-  echo "check_sample.sh: node is not installed; run scripts/install-deps --test (it installs node and runs npm ci in tests/node)" >&2
+  echo "check_sample.sh: node is not installed; run scripts/install-deps --test" \
+       "(it installs node and runs npm ci in tests/node)" >&2
   exit 1
 fi
 if [[ ! -d "$here/node_modules/@mcap/core" ]]; then
-  echo "check_sample.sh: $here/node_modules is missing; run scripts/install-deps --test (it runs npm ci in tests/node)" >&2
+  echo "check_sample.sh: $here/node_modules is missing; run scripts/install-deps --test" \
+       "(it runs npm ci in tests/node)" >&2
   exit 1
 fi
 

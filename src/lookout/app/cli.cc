@@ -85,8 +85,9 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
   }
   for (const std::string& w : r.stage_warnings) std::cerr << "lookout: warning: " << w << "\n";
   if (r.stage_warning_count > static_cast<std::int64_t>(r.stage_warnings.size())) {
-    std::cerr << fmt::format("lookout: warning: ... {} more\n",
-                             r.stage_warning_count - static_cast<std::int64_t>(r.stage_warnings.size()));
+    std::cerr << fmt::format(
+        "lookout: warning: ... {} more\n",
+        r.stage_warning_count - static_cast<std::int64_t>(r.stage_warnings.size()));
   }
   std::cout << fmt::format("wall time   {:.3f} s (sensor simulation {:.3f} s)\n", r.wall_s,
                            r.simulation_wall_s);
@@ -161,8 +162,9 @@ int Run(const std::string& scenario_path, std::string out_dir, int threads,
   // Every input is checked before anything is written.
   if (snapshot_s && (!std::isfinite(*snapshot_s) || *snapshot_s < 0.0 ||
                      *snapshot_s > scenario.duration_s)) {
-    throw InputError("--snapshot", 0, "snapshot",
-                     fmt::format("must be a time within the scenario, 0 to {} s", scenario.duration_s));
+    throw InputError(
+        "--snapshot", 0, "snapshot",
+        fmt::format("must be a time within the scenario, 0 to {} s", scenario.duration_s));
   }
   if (!std::isfinite(snapshot_max_speed_mps) || snapshot_max_speed_mps <= 0.0) {
     throw InputError("--snapshot-max-speed", 0, "snapshot-max-speed", "must be a speed > 0 m/s");
@@ -441,7 +443,8 @@ int RunCli(int argc, char** argv) {
       "replay", "Run the pipeline on a recorded log: CARMEN, ROS1 bag (or its .zip), MCAP");
   replay->add_option("log", replay_options.log_path, "The log (.log, .clf, .gz, .bag, .zip, .mcap)")
       ->required();
-  replay->add_option("--out", replay_options.out_dir, "Output directory (default lookout-out/NAME)");
+  replay->add_option("--out", replay_options.out_dir,
+                     "Output directory (default lookout-out/NAME)");
   replay->add_option("--json", replay_options.json_path, "Also write the metrics JSON here");
   replay->add_option("--scan-topic", replay_options.topics.scan_topic,
                      "The laser scan topic, when the log has several");

@@ -24,8 +24,9 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
     const auto odometry = next_odometry < n_odometry
                               ? key(streams.odometry[next_odometry].stamp, SensorOrder::kOdometry)
                               : kNone;
-    const auto stereo =
-        next_stereo < n_stereo ? key(streams.stereo[next_stereo].stamp, SensorOrder::kStereo) : kNone;
+    const auto stereo = next_stereo < n_stereo
+                            ? key(streams.stereo[next_stereo].stamp, SensorOrder::kStereo)
+                            : kNone;
     const auto lidar =
         next_lidar < n_lidar ? key(streams.lidar[next_lidar].stamp, SensorOrder::kLidar) : kNone;
     const auto first = std::min({odometry, stereo, lidar});

@@ -15,8 +15,12 @@ using Seen = std::vector<std::pair<TimeNs, SensorOrder>>;
 class ProbeStage : public Stage {
  public:
   explicit ProbeStage(Seen* seen) : seen_(seen) {}
-  void OnOdometry(const EgoOdometry& o) override { seen_->push_back({o.stamp, SensorOrder::kOdometry}); }
-  void OnStereo(const StereoFrame& f) override { seen_->push_back({f.stamp, SensorOrder::kStereo}); }
+  void OnOdometry(const EgoOdometry& o) override {
+    seen_->push_back({o.stamp, SensorOrder::kOdometry});
+  }
+  void OnStereo(const StereoFrame& f) override {
+    seen_->push_back({f.stamp, SensorOrder::kStereo});
+  }
   void OnLidar(const LidarScan& s) override { seen_->push_back({s.stamp, SensorOrder::kLidar}); }
 
  private:

@@ -124,10 +124,10 @@ int RunSlamCommand(const SlamCommandOptions& options) {
   std::cout << fmt::format("log         {} ({} records, {} scans, {} lines skipped)\n",
                            options.log_path, log.records.size(), log.ScanCount(),
                            log.skipped_lines);
-  std::cout << fmt::format("mode        {}\n", options.odometry_only
-                                                  ? "odometry only (dead reckoning)"
-                                                  : fmt::format("particle filter, {} particles",
-                                                                slam_options.filter.particle_count));
+  std::cout << fmt::format("mode        {}\n",
+                           options.odometry_only ? "odometry only (dead reckoning)"
+                                                 : fmt::format("particle filter, {} particles",
+                                                               slam_options.filter.particle_count));
   std::cout << fmt::format("scans used  {} ({} records refused)\n", result.scans_used,
                            result.records_refused);
   std::cout << fmt::format(

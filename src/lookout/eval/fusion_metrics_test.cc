@@ -99,7 +99,8 @@ LidarObjectFrame LidarObjectsFromTruth(const sim::TruthFrame& truth,
     o.front_start_m = front->start_m;
     o.front_end_m = front->end_m;
     const Matrix2d to_vehicle = Pose2(0.0, 0.0, -truth.ego.state.pose.yaw).Rotation();
-    o.velocity_mps = to_vehicle * actor.state.Velocity() + 0.5 * Vector2d{rng.Normal(), rng.Normal()};
+    o.velocity_mps =
+        to_vehicle * actor.state.Velocity() + 0.5 * Vector2d{rng.Normal(), rng.Normal()};
     o.velocity_covariance = 0.25 * Matrix2d::Identity();
     o.class_pmf[static_cast<std::size_t>(actor.object_class)] = 1.0;
     o.dynamic = std::abs(actor.state.speed_mps) > 0.5;

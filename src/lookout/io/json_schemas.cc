@@ -31,7 +31,9 @@ json Quaternion() {
   return Object({{"x", Number()}, {"y", Number()}, {"z", Number()}, {"w", Number()}});
 }
 json Pose() { return Object({{"position", Vector3()}, {"orientation", Quaternion()}}); }
-json Color() { return Object({{"r", Number()}, {"g", Number()}, {"b", Number()}, {"a", Number()}}); }
+json Color() {
+  return Object({{"r", Number()}, {"g", Number()}, {"b", Number()}, {"a", Number()}});
+}
 
 JsonSchema Make(const std::string& name, const std::string& description, json properties) {
   json schema = Object(std::move(properties), description);
@@ -99,20 +101,21 @@ JsonSchema FoxgloveSceneUpdateSchema() {
                             {"scale_invariant", Boolean()},
                             {"color", Color()},
                             {"text", String()}});
-  const json entity = Object({{"timestamp", Time()},
-                              {"frame_id", String()},
-                              {"id", String()},
-                              {"lifetime", Duration()},
-                              {"frame_locked", Boolean()},
-                              {"metadata", ArrayOf(Object({{"key", String()}, {"value", String()}}))},
-                              {"arrows", ArrayOf(arrow)},
-                              {"cubes", ArrayOf(cube)},
-                              {"spheres", ArrayOf(Object({}))},
-                              {"cylinders", ArrayOf(cylinder)},
-                              {"lines", ArrayOf(line)},
-                              {"triangles", ArrayOf(Object({}))},
-                              {"texts", ArrayOf(text)},
-                              {"models", ArrayOf(Object({}))}});
+  const json entity =
+      Object({{"timestamp", Time()},
+              {"frame_id", String()},
+              {"id", String()},
+              {"lifetime", Duration()},
+              {"frame_locked", Boolean()},
+              {"metadata", ArrayOf(Object({{"key", String()}, {"value", String()}}))},
+              {"arrows", ArrayOf(arrow)},
+              {"cubes", ArrayOf(cube)},
+              {"spheres", ArrayOf(Object({}))},
+              {"cylinders", ArrayOf(cylinder)},
+              {"lines", ArrayOf(line)},
+              {"triangles", ArrayOf(Object({}))},
+              {"texts", ArrayOf(text)},
+              {"models", ArrayOf(Object({}))}});
   const json deletion = Object(
       {{"timestamp", Time()}, {"type", {{"type", "integer"}, {"enum", {0, 1}}}}, {"id", String()}});
   return Make("foxglove.SceneUpdate", "An update to the entities displayed in a 3D scene",

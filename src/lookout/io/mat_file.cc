@@ -76,8 +76,9 @@ struct Place {
 
   std::string Describe() const {
     if (compressed_at) {
-      return fmt::format("byte {} of the stream inflated from the compressed element at file byte {}",
-                         offset, *compressed_at);
+      return fmt::format(
+          "byte {} of the stream inflated from the compressed element at file byte {}", offset,
+          *compressed_at);
     }
     return fmt::format("file byte {}", offset);
   }
@@ -136,7 +137,8 @@ class Reader {
     const std::size_t bytes = Load<std::uint32_t>(buffer.data() + offset + 4);
     const std::size_t left = buffer.size() - offset - 8;
     if (bytes > left) {
-      Fail(field, place, fmt::format("element of {} bytes runs past the end ({} left)", bytes, left));
+      Fail(field, place,
+           fmt::format("element of {} bytes runs past the end ({} left)", bytes, left));
     }
     element.data = buffer.substr(offset + 8, bytes);
     // Every element is padded to 8 bytes except compressed ones, which MATLAB writes back to back.
@@ -177,7 +179,8 @@ class Reader {
       if (status != Z_OK && !(status == Z_BUF_ERROR && stream.avail_out == 0)) {
         inflateEnd(&stream);
         Fail("", element.place,
-             fmt::format("corrupt zlib data ({})", stream.msg != nullptr ? stream.msg : "truncated"));
+             fmt::format("corrupt zlib data ({})",
+                         stream.msg != nullptr ? stream.msg : "truncated"));
       }
     }
     inflateEnd(&stream);
@@ -209,7 +212,9 @@ class Reader {
     std::vector<std::int64_t> shape;
     for (std::size_t i = 0; i < dims.data.size(); i += 4) {
       const std::int32_t d = Load<std::int32_t>(dims.data.data() + i);
-      if (d < 0) Fail(field_hint + ".dimensions", dims.place, fmt::format("negative dimension {}", d));
+      if (d < 0) {
+        Fail(field_hint + ".dimensions", dims.place, fmt::format("negative dimension {}", d));
+      }
       shape.push_back(d);
     }
 
@@ -242,7 +247,8 @@ class Reader {
         const std::string cell_field = fmt::format("{}{{{}}}", field, i + 1);
         const Element cell = ReadTag(body, offset, base, cell_field);
         if (cell.type != kMiMatrix) {
-          Fail(cell_field, cell.place, fmt::format("cell holds data type {}, not miMATRIX", cell.type));
+          Fail(cell_field, cell.place,
+               fmt::format("cell holds data type {}, not miMATRIX", cell.type));
         }
         std::string cell_name;
         MatVariable cell_value;

@@ -56,16 +56,17 @@ class MatBuilder {
   }
 
   // A miMATRIX element: flags (class, complex), dims, name, then `payload` (already tagged).
-  std::string Matrix(std::uint32_t mx_class, std::vector<std::int32_t> dims, const std::string& name,
-                     const std::string& payload, std::uint32_t extra_flags = 0) const {
+  std::string Matrix(std::uint32_t mx_class, std::vector<std::int32_t> dims,
+                     const std::string& name, const std::string& payload,
+                     std::uint32_t extra_flags = 0) const {
     std::string flags;
     Put32(flags, mx_class | extra_flags);
     Put32(flags, 0);
     std::string dim_data;
     for (const std::int32_t d : dims) PutRaw(dim_data, d);
-    std::string body = Element(6, flags) + Element(5, dim_data) +
-                       (name.size() <= 4 && !name.empty() ? SmallElement(1, name) : Element(1, name)) +
-                       payload;
+    std::string body =
+        Element(6, flags) + Element(5, dim_data) +
+        (name.size() <= 4 && !name.empty() ? SmallElement(1, name) : Element(1, name)) + payload;
     return Element(14, body);
   }
 

@@ -38,7 +38,8 @@ json StateToJson(const sim::KinematicState& s) {
 
 json FootprintToJson(const sim::Shape& shape) {
   if (shape.kind == sim::Shape::Kind::kCircle) {
-    return {{"circle", {{"x", shape.center.x()}, {"y", shape.center.y()}, {"radius", shape.radius}}}};
+    return {
+        {"circle", {{"x", shape.center.x()}, {"y", shape.center.y()}, {"radius", shape.radius}}}};
   }
   json ring = json::array();
   for (const Eigen::Vector2d& v : shape.vertices) ring.push_back({v.x(), v.y()});
@@ -209,13 +210,14 @@ EgoOdometry EgoOdometryFromJson(const json& j, const std::string& source) {
 json TruthFrameToJson(const sim::TruthFrame& frame) {
   json actors = json::array();
   for (const sim::ActorTruth& a : frame.actors) {
-    actors.push_back({{"id", a.id},
-                      {"class", std::string(ToString(a.object_class))},
-                      {"state", StateToJson(a.state)},
-                      {"footprint", FootprintToJson(a.footprint)},
-                      {"visible_fraction_lidar", a.visible_fraction_lidar},
-                      {"visible_fraction_stereo", a.visible_fraction_stereo},
-                      {"contact_time", a.contact_time_s ? json(*a.contact_time_s) : json(nullptr)}});
+    actors.push_back(
+        {{"id", a.id},
+         {"class", std::string(ToString(a.object_class))},
+         {"state", StateToJson(a.state)},
+         {"footprint", FootprintToJson(a.footprint)},
+         {"visible_fraction_lidar", a.visible_fraction_lidar},
+         {"visible_fraction_stereo", a.visible_fraction_stereo},
+         {"contact_time", a.contact_time_s ? json(*a.contact_time_s) : json(nullptr)}});
   }
   return {{"timestamp", TimeToJson(frame.stamp)},
           {"ego",

@@ -167,7 +167,8 @@ std::string SmallRobotBag(bool with_marker) {
   writer.AddConnection(4, "/visualization_marker", "visualization_msgs/Marker",
                        "Header header\nstring ns\nint32 id\n" + testing::kSeparator + "\n" +
                            std::string(testing::kHeaderDefinition));
-  writer.AddMessage(2, {100, 0}, testing::TfMessage({{{100, 0}, "base_link", "laser", 0.8, 0.2, 0.5}}));
+  writer.AddMessage(2, {100, 0},
+                    testing::TfMessage({{{100, 0}, "base_link", "laser", 0.8, 0.2, 0.5}}));
   for (std::uint32_t k = 0; k < 5; ++k) {
     const RosTime stamp{101 + k, 0};
     writer.AddMessage(1, stamp, testing::OdometryMessage(stamp, k, 0, 0, 1.0, 0.0));

@@ -161,13 +161,15 @@ Decompressed DecompressBz2(std::string_view compressed, std::uint64_t size) {
         stream.avail_out = 1;
         status = BZ2_bzDecompress(&stream);
         if (stream.avail_out == 0) {
-          result.problem = fmt::format("bz2: decompresses to more than the {} bytes declared", size);
+          result.problem =
+              fmt::format("bz2: decompresses to more than the {} bytes declared", size);
         }
         break;
       }
       out.resize(std::min(limit, 2 * out.size() + 1));
     }
-    const std::size_t room = std::min<std::size_t>(out.size() - used, std::numeric_limits<unsigned int>::max());
+    const std::size_t room =
+        std::min<std::size_t>(out.size() - used, std::numeric_limits<unsigned int>::max());
     stream.next_out = out.data() + used;
     stream.avail_out = static_cast<unsigned int>(room);
     status = BZ2_bzDecompress(&stream);
@@ -238,7 +240,9 @@ RosBag::RosBag(std::string bytes, std::string source)
   std::optional<BagRecord> header;
   try {
     header = ReadRecord(bytes_, kMagic.size());
-    if (!header) Refuse(source_, kMagic.size(), "bag header", "the file ends inside the bag header");
+    if (!header) {
+      Refuse(source_, kMagic.size(), "bag header", "the file ends inside the bag header");
+    }
     if (header->op != kOpBagHeader) {
       Refuse(source_, kMagic.size(), "bag header.op", fmt::format("is {}, not 3", header->op));
     }
@@ -401,10 +405,10 @@ void RosBag::VisitChunk(const ChunkRef& chunk, const Visitor& visit,
       if (!r) throw RecordError{"chunk record", "runs past the chunk's end"};
       if (r->op == kOpMessageData) {
         const char* time = r->header.Bytes("time", 8).data();
-        messages.push_back(RosBagMessage{
-            r->header.U32("conn"),
-            RosTime{LoadLittleEndian<std::uint32_t>(time), LoadLittleEndian<std::uint32_t>(time + 4)},
-            r->data, chunk.position});
+        messages.push_back(RosBagMessage{r->header.U32("conn"),
+                                         RosTime{LoadLittleEndian<std::uint32_t>(time),
+                                                 LoadLittleEndian<std::uint32_t>(time + 4)},
+                                         r->data, chunk.position});
       } else if (r->op == kOpConnection) {
         new_connections.push_back(ParseConnection(*r));
       } else {

@@ -266,7 +266,8 @@ TEST_F(LegTrackerBag, EveryDefinitionParsesAndEveryMessageDecodes) {
   RosBag bag(*bytes_, "leg_tracker.bag");
   std::map<std::uint32_t, RosMessageDefinition> definitions;
   for (const auto& [id, connection] : bag.connections()) {
-    definitions.emplace(id, ParseRosMessageDefinition(connection.type, connection.message_definition));
+    definitions.emplace(id,
+                        ParseRosMessageDefinition(connection.type, connection.message_definition));
   }
   ASSERT_EQ(definitions.size(), 7U);
   const RosMessageDefinition& marker = definitions.at(6);

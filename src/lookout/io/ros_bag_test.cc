@@ -150,9 +150,9 @@ TEST(RosBag, ChunkSizesAreNotTakenOnTrust) {
   // A bz2 chunk claiming 4 GiB and one claiming 100 MB more than it holds: both skipped,
   // without allocating what they claim.
   for (const std::uint32_t size : {0xffffffffU, 100000000U}) {
-    const std::string records = TestBagWriter::Record({{"op", "\x02"}, {"conn", TestBagWriter::U32(0)},
-                                                       {"time", TestBagWriter::Time({1, 0})}},
-                                                      "abc");
+    const std::string records = TestBagWriter::Record(
+        {{"op", "\x02"}, {"conn", TestBagWriter::U32(0)}, {"time", TestBagWriter::Time({1, 0})}},
+        "abc");
     std::string compressed(1000, '\0');
     auto n = static_cast<unsigned int>(compressed.size());
     ASSERT_EQ(BZ2_bzBuffToBuffCompress(compressed.data(), &n, const_cast<char*>(records.data()),

@@ -186,7 +186,9 @@ class TestBagWriter {
       RosTime end = messages_[first].time;
       for (std::size_t i = first; i < last; ++i) {
         const Message& m = messages_[i];
-        if (written.insert(m.connection).second) records += ConnectionRecord(Connection(m.connection));
+        if (written.insert(m.connection).second) {
+          records += ConnectionRecord(Connection(m.connection));
+        }
         index[m.connection].emplace_back(m.time, static_cast<std::uint32_t>(records.size()));
         records += Record({{"op", std::string(1, '\x02')}, {"conn", U32(m.connection)},
                            {"time", Time(m.time)}},
@@ -340,13 +342,17 @@ inline std::string SmallLog(const std::string& compression, bool second_scan_top
     writer.AddMessage(5, {100, 0}, testing::LaserScanMessage({100, 0}, -1.0F, 0.5F, {1.0F}));
   }
   writer.AddMessage(4, {100, 0}, testing::RosSerializer().PutString("hello").bytes());
-  writer.AddMessage(0, {101, 0}, testing::LaserScanMessage({100, 900000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
-  writer.AddMessage(0, {101, 100}, testing::LaserScanMessage({100, 800000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
+  writer.AddMessage(0, {101, 0},
+                    testing::LaserScanMessage({100, 900000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
+  writer.AddMessage(0, {101, 100},
+                    testing::LaserScanMessage({100, 800000000}, -1.0F, 0.5F, {1, 2, 3, 4, 5}));
   writer.AddMessage(0, {101, 200}, testing::LaserScanMessage({0, 0}, -1.0F, 0.5F, {2.0F}));
-  writer.AddMessage(0, {101, 300}, testing::LaserScanMessage({101, 0}, -1.0F, 0.5F, {1, 2}).substr(0, 30));
+  writer.AddMessage(0, {101, 300},
+                    testing::LaserScanMessage({101, 0}, -1.0F, 0.5F, {1, 2}).substr(0, 30));
   writer.AddMessage(1, {101, 400}, testing::OdometryMessage({101, 300}, 1, 2, 0.1, 0.5, 0.0));
-  writer.AddMessage(2, {101, 500}, testing::TfMessage({{{101, 500}, "odom", "base_link", 1, 2, 0.1},
-                                                       {{101, 500}, "base_link", "laser", 0, 0, 0}}));
+  writer.AddMessage(2, {101, 500},
+                    testing::TfMessage({{{101, 500}, "odom", "base_link", 1, 2, 0.1},
+                                        {{101, 500}, "base_link", "laser", 0, 0, 0}}));
   writer.AddMessage(3, {102, 0}, testing::PersonMessage(1.0, 2.0, 7));
   writer.AddMessage(3, {102, 1}, testing::PersonMessage(3.0, 4.0, 8));
   return writer.Finish();

@@ -41,8 +41,8 @@ TEST(RosConversions, OdometryPoseTwistAndYaw) {
   const RosMessageDefinition d =
       ParseRosMessageDefinition("nav_msgs/Odometry", testing::OdometryDefinition());
   for (const double yaw : {0.0, 0.7, -2.5, 3.0}) {
-    const RosOdometry odometry =
-        ToOdometry(DecodeRosMessage(d, testing::OdometryMessage({10, 20}, 3.0, -4.0, yaw, 1.25, 0.5)));
+    const RosOdometry odometry = ToOdometry(
+        DecodeRosMessage(d, testing::OdometryMessage({10, 20}, 3.0, -4.0, yaw, 1.25, 0.5)));
     EXPECT_EQ(odometry.stamp, 10 * kNanosPerSecond + 20);
     EXPECT_EQ(odometry.frame_id, "odom");
     EXPECT_EQ(odometry.child_frame_id, "base_link");

@@ -105,7 +105,8 @@ bool ValidConstant(RosType type, std::string_view value) {
       return value == "True" || value == "False" || value == "true" || value == "false" ||
              value == "1" || value == "0";
     case RosType::kInt8:
-      return integer_in(std::numeric_limits<std::int8_t>::min(), std::numeric_limits<std::int8_t>::max());
+      return integer_in(std::numeric_limits<std::int8_t>::min(),
+                        std::numeric_limits<std::int8_t>::max());
     case RosType::kUint8:
       return integer_in(0, std::numeric_limits<std::uint8_t>::max());
     case RosType::kInt16:
@@ -514,7 +515,8 @@ std::size_t MinimumSerializedSize(const RosMessageDefinition& definition,
 }
 
 const RosValue& RosStruct::operator[](std::string_view field_name) const {
-  const std::optional<std::size_t> i = spec == nullptr ? std::nullopt : spec->FieldIndex(field_name);
+  const std::optional<std::size_t> i =
+      spec == nullptr ? std::nullopt : spec->FieldIndex(field_name);
   if (!i) {
     throw RosMessageError(std::string(field_name),
                           fmt::format("{} has no such field", spec == nullptr ? "?" : spec->name));

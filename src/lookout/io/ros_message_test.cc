@@ -49,7 +49,8 @@ TEST(RosMessageDefinition, LaserScanFieldsAndHeader) {
 }
 
 TEST(RosMessageDefinition, OdometryResolvesPackagesAndFixedArrays) {
-  const RosMessageDefinition d = ParseRosMessageDefinition("nav_msgs/Odometry", OdometryDefinition());
+  const RosMessageDefinition d =
+      ParseRosMessageDefinition("nav_msgs/Odometry", OdometryDefinition());
   EXPECT_EQ(d.specs.size(), 9U);
   // "Pose pose" inside geometry_msgs/PoseWithCovariance means geometry_msgs/Pose.
   EXPECT_EQ(FieldOf(d, "geometry_msgs/PoseWithCovariance", "pose").message_type,
@@ -110,11 +111,13 @@ TEST(RosMessageDefinition, RefusesBadDefinitionsNamingTheLine) {
   EXPECT_EQ(error_of("a/B", "uint8 x\n===\nuint8 y\n"),
             "MSG: a/B line 3: a section after '===' must start with 'MSG: pkg/Type'");
   EXPECT_EQ(error_of("B", "uint8 x\n"), "type: 'B' is not a pkg/Type name");
-  EXPECT_EQ(error_of("a/B", "uint8 x extra\n"), "MSG: a/B line 1: unexpected 'extra' after field x");
+  EXPECT_EQ(error_of("a/B", "uint8 x extra\n"),
+            "MSG: a/B line 1: unexpected 'extra' after field x");
 }
 
 TEST(RosMessageDecode, OdometryValues) {
-  const RosMessageDefinition d = ParseRosMessageDefinition("nav_msgs/Odometry", OdometryDefinition());
+  const RosMessageDefinition d =
+      ParseRosMessageDefinition("nav_msgs/Odometry", OdometryDefinition());
   const std::string bytes = testing::OdometryMessage({100, 5}, 1.5, -2.0, 0.5, 0.75, -0.25);
   ASSERT_EQ(bytes.size(), 700U + 4U + 9U);  // two strings: "odom" and "base_link"
   const RosValue v = DecodeRosMessage(d, bytes);
@@ -144,7 +147,12 @@ TEST(RosMessageDecode, ScalarKindsAndArrays) {
   s.Put(std::uint8_t{1}).Put(std::int8_t{-5}).Put(std::uint8_t{250}).Put(std::int16_t{-300});
   s.Put(std::uint16_t{60000}).Put(std::int32_t{-70000}).Put(std::uint32_t{4000000000U});
   s.Put(std::int64_t{-5000000000}).Put(std::uint64_t{18000000000000000000ULL});
-  s.Put(0.5F).Put(-0.125).PutString("héllo").PutTime({7, 8}).Put(std::int32_t{-1}).Put(std::int32_t{500});
+  s.Put(0.5F)
+      .Put(-0.125)
+      .PutString("héllo")
+      .PutTime({7, 8})
+      .Put(std::int32_t{-1})
+      .Put(std::int32_t{500});
   s.Put(std::int16_t{3}).Put(std::int16_t{-4});
   s.Put(std::uint32_t{2}).PutString("a").PutString("");
   s.Put(std::uint32_t{3}).Put(std::uint8_t{1}).Put(std::uint8_t{2}).Put(std::uint8_t{255});
@@ -163,7 +171,8 @@ TEST(RosMessageDecode, ScalarKindsAndArrays) {
   EXPECT_EQ(v["s"].AsString(), "héllo");
   EXPECT_EQ(v["t"].AsTime(), (RosTime{7, 8}));
   EXPECT_EQ(std::get<RosDuration>(v["d"].data), (RosDuration{-1, 500}));
-  EXPECT_EQ(std::get<std::vector<std::int64_t>>(v["pair"].data), (std::vector<std::int64_t>{3, -4}));
+  EXPECT_EQ(std::get<std::vector<std::int64_t>>(v["pair"].data),
+            (std::vector<std::int64_t>{3, -4}));
   ASSERT_EQ(v["names"].AsArray().size(), 2U);
   EXPECT_EQ(v["names"].AsArray()[0].AsString(), "a");
   EXPECT_EQ(std::get<std::vector<std::uint64_t>>(v["blob"].data),
@@ -171,7 +180,8 @@ TEST(RosMessageDecode, ScalarKindsAndArrays) {
 }
 
 TEST(RosMessageDecode, ErrorsNameTheFieldPath) {
-  const RosMessageDefinition d = ParseRosMessageDefinition("tf2_msgs/TFMessage", TfMessageDefinition());
+  const RosMessageDefinition d =
+      ParseRosMessageDefinition("tf2_msgs/TFMessage", TfMessageDefinition());
   const std::string good = testing::TfMessage({{{1, 2}, "odom", "base_link", 1, 2, 0.3},
                                                {{1, 2}, "base_link", "laser", 0.1, 0, 0}});
   EXPECT_EQ(DecodeRosMessage(d, good)["transforms"].AsArray().size(), 2U);

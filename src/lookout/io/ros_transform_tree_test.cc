@@ -61,7 +61,8 @@ TEST_F(TreeTest, InterpolatesAMovingEdgeAndHoldsTheEndsOutsideItsSamples) {
 TEST_F(TreeTest, UnknownOrUnconnectedFramesHaveNoAnswer) {
   EXPECT_FALSE(tree_.Find("base_link", "camera", 0));
   EXPECT_FALSE(tree_.Find("camera", "camera", 0));
-  const std::vector<RosTransform> two_trees = {Edge("a", "b", 0, 1, 0, 0), Edge("c", "d", 0, 1, 0, 0)};
+  const std::vector<RosTransform> two_trees = {Edge("a", "b", 0, 1, 0, 0),
+                                               Edge("c", "d", 0, 1, 0, 0)};
   EXPECT_FALSE(RosTransformTree(two_trees).Find("b", "d", 0));
 }
 

@@ -65,7 +65,8 @@ std::string Inflate(const ZipBytes& zip, std::size_t offset, std::string_view co
   if (inflateInit2(&stream, -MAX_WBITS) != Z_OK) zip.Fail(offset, "zlib cannot start inflating");
   std::string out;
   // Grow with the real output so that a lying size field costs nothing.
-  out.resize(std::min<std::size_t>(declared_size, std::max<std::size_t>(1 << 16, 4 * compressed.size())));
+  out.resize(
+      std::min<std::size_t>(declared_size, std::max<std::size_t>(1 << 16, 4 * compressed.size())));
   std::size_t used = 0;
   stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
   stream.avail_in = static_cast<uInt>(compressed.size());
@@ -75,7 +76,8 @@ std::string Inflate(const ZipBytes& zip, std::size_t offset, std::string_view co
       if (out.size() >= declared_size) break;
       out.resize(std::min<std::size_t>(declared_size, 2 * out.size() + 1));
     }
-    const std::size_t room = std::min<std::size_t>(out.size() - used, std::numeric_limits<uInt>::max());
+    const std::size_t room =
+        std::min<std::size_t>(out.size() - used, std::numeric_limits<uInt>::max());
     stream.next_out = reinterpret_cast<Bytef*>(out.data() + used);
     stream.avail_out = static_cast<uInt>(room);
     status = inflate(&stream, Z_NO_FLUSH);
@@ -111,7 +113,9 @@ ZipEntry ExtractSingleZipEntry(std::string_view bytes, const std::string& source
   }
   const auto entries = zip.Load<std::uint16_t>(end + 10);
   const auto directory_offset = zip.Load<std::uint32_t>(end + 16);
-  if (directory_offset == 0xffffffff || entries == 0xffff) zip.Fail(end, "ZIP64 archives are not read");
+  if (directory_offset == 0xffffffff || entries == 0xffff) {
+    zip.Fail(end, "ZIP64 archives are not read");
+  }
   if (entries != 1) zip.Fail(end, fmt::format("the archive holds {} entries, not one", entries));
 
   const std::size_t central = directory_offset;
@@ -128,9 +132,12 @@ ZipEntry ExtractSingleZipEntry(std::string_view bytes, const std::string& source
   ZipEntry entry;
   entry.name = std::string(zip.Slice(central + kCentralHeaderSize, name_length));
   if ((flags & kFlagEncrypted) != 0) zip.Fail(central, "encrypted entries are not read");
-  if (compressed_size == 0xffffffff || size == 0xffffffff) zip.Fail(central, "ZIP64 entries are not read");
+  if (compressed_size == 0xffffffff || size == 0xffffffff) {
+    zip.Fail(central, "ZIP64 entries are not read");
+  }
   if (method != kMethodStored && method != kMethodDeflated) {
-    zip.Fail(central, fmt::format("compression method {} (only stored and deflate are read)", method));
+    zip.Fail(central,
+             fmt::format("compression method {} (only stored and deflate are read)", method));
   }
 
   if (zip.Load<std::uint32_t>(local) != kLocalHeaderSignature) {

@@ -67,7 +67,8 @@ std::string SampleData() {
 
 TEST(ZipEntry, StoredAndDeflated) {
   for (const bool deflate : {false, true}) {
-    const ZipEntry entry = ExtractSingleZipEntry(MakeZip("log.bag", SampleData(), deflate), "t.zip");
+    const ZipEntry entry =
+        ExtractSingleZipEntry(MakeZip("log.bag", SampleData(), deflate), "t.zip");
     EXPECT_EQ(entry.name, "log.bag");
     EXPECT_EQ(entry.data, SampleData());
   }
@@ -95,8 +96,8 @@ TEST(ZipEntry, RefusesMismatchesAndOtherArchives) {
 }
 
 TEST(ZipEntry, TheLegTrackerBag) {
-  const std::string path =
-      std::string(LOOKOUT_SOURCE_DIR) + "/../shared/data/legtracker/general_tracking_moving_1.bag.zip";
+  const std::string path = std::string(LOOKOUT_SOURCE_DIR) +
+                           "/../shared/data/legtracker/general_tracking_moving_1.bag.zip";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "no data at " << path;
   const ZipEntry entry = ReadSingleZipEntry(path);
   EXPECT_EQ(entry.name, "general_tracking_moving_1.bag");

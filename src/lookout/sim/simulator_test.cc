@@ -133,7 +133,8 @@ void ExpectSameLog(const SensorLog& a, const SensorLog& b) {
       EXPECT_EQ(x.actors[j].object_class, y.actors[j].object_class);
       ExpectSameState(x.actors[j].state, y.actors[j].state);
       ExpectSameShape(x.actors[j].footprint, y.actors[j].footprint);
-      EXPECT_TRUE(SameBytes(x.actors[j].visible_fraction_lidar, y.actors[j].visible_fraction_lidar));
+      EXPECT_TRUE(
+          SameBytes(x.actors[j].visible_fraction_lidar, y.actors[j].visible_fraction_lidar));
       EXPECT_TRUE(
           SameBytes(x.actors[j].visible_fraction_stereo, y.actors[j].visible_fraction_stereo));
       EXPECT_EQ(x.actors[j].contact_time_s, y.actors[j].contact_time_s);
