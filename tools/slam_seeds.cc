@@ -46,6 +46,7 @@ std::map<std::string, std::function<void(SlamOptions&, double)>> Settable() {
   m["filter.particle_count"] = [](SlamOptions& o, double v) { o.filter.particle_count = static_cast<int>(v); };
   m["filter.particle_refine_iterations"] = [](SlamOptions& o, double v) { o.filter.particle_refine_iterations = static_cast<int>(v); };
   m["filter.refine_with_prior"] = [](SlamOptions& o, double v) { o.filter.refine_with_prior = v != 0.0; };
+  m["filter.weight_prior_share"] = [](SlamOptions& o, double v) { o.filter.weight_prior_share = v; };
   m["filter.resample_ess_share"] = [](SlamOptions& o, double v) { o.filter.resample_ess_share = v; };
   m["matcher.point_spacing_m"] = [](SlamOptions& o, double v) { o.matcher.point_spacing_m = v; };
   m["matcher.max_points"] = [](SlamOptions& o, double v) { o.matcher.max_points = static_cast<int>(v); };
@@ -58,6 +59,7 @@ std::map<std::string, std::function<void(SlamOptions&, double)>> Settable() {
   m["matcher.search_yaw_per_m"] = [](SlamOptions& o, double v) { o.matcher.search_yaw_per_m = v; };
   m["matcher.max_search_xy_m"] = [](SlamOptions& o, double v) { o.matcher.max_search_xy_m = v; };
   m["matcher.max_search_yaw_rad"] = [](SlamOptions& o, double v) { o.matcher.max_search_yaw_rad = v; };
+  m["matcher.search_yaw_edge_extend"] = [](SlamOptions& o, double v) { o.matcher.search_yaw_edge_extend = v; };
   m["matcher.coarse_sigma_m"] = [](SlamOptions& o, double v) { o.matcher.coarse_sigma_m = v; };
   m["matcher.gauss_newton_iterations"] = [](SlamOptions& o, double v) { o.matcher.gauss_newton_iterations = static_cast<int>(v); };
   m["motion.alpha1"] = [](SlamOptions& o, double v) { o.motion.alpha1 = v; };

@@ -127,7 +127,8 @@ void LidarLocaliser::Correct(std::span<const Eigen::Vector2d> points, const Pose
     p.pose = RefineGaussNewton(map_, points, p.pose, options_.filter.particle_refine_iterations,
                                m, options_.filter.refine_with_prior ? &prior : nullptr)
                  .pose;
-    log_weights[i] = p.log_weight + scale * ScanLogLikelihood(map_, p.pose, points, m);
+    log_weights[i] = p.log_weight + scale * ScanLogLikelihood(map_, p.pose, points, m) +
+                     options_.filter.weight_prior_share * PriorLogDensity(prior, p.pose);
   }
   std::vector<double> w = NormaliseLogWeights(log_weights);
   const double n = static_cast<double>(particles_.size());

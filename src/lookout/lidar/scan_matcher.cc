@@ -93,6 +93,16 @@ std::vector<double> AnglesAround(double centre, double half_width, double step) 
   return yaws;
 }
 
+// The angles centre +- k step for first <= k <= last, the positive one of each pair first.
+std::vector<double> AnglesInBand(double centre, int first, int last, double step) {
+  std::vector<double> yaws;
+  for (int k = first; k <= last; ++k) {
+    yaws.push_back(centre + static_cast<double>(k) * step);
+    yaws.push_back(centre - static_cast<double>(k) * step);
+  }
+  return yaws;
+}
+
 }  // namespace
 
 ScanPoints ExtractScanPoints(const LidarScan& scan, const MatcherOptions& options) {
@@ -146,6 +156,12 @@ PosePrior PriorFromWindow(const Pose2& mean, const SearchWindow& window) {
   return {mean, std::max(0.5 * window.xy_m, 1e-3), std::max(0.5 * window.yaw_rad, 1e-4)};
 }
 
+double PriorLogDensity(const PosePrior& prior, const Pose2& pose) {
+  const double dxy = (pose.translation - prior.mean.translation).norm() / prior.sigma_xy_m;
+  const double dyaw = WrapAngle(pose.yaw - prior.mean.yaw) / prior.sigma_yaw_rad;
+  return -0.5 * (dxy * dxy + dyaw * dyaw);
+}
+
 SearchWindow SearchWindowFor(const Pose2& increment, const MatcherOptions& o) {
   const double dist = increment.translation.norm();
   const double turn = std::abs(WrapAngle(increment.yaw));
@@ -168,10 +184,33 @@ Pose2 CorrelativeSearch(const LocalMap& map, std::span<const Eigen::Vector2d> po
       static_cast<int>(std::ceil(window.xy_m / (static_cast<double>(step) * cell)));
   const double scale = options.effective_beams / static_cast<double>(points.size());
   const PosePrior prior = PriorFromWindow(initial, window);
-  const GridBest coarse =
+  const LikelihoodTable coarse_table(options.coarse_sigma_m, max_d, options);
+  GridBest coarse =
       SearchGrid(map, points, initial.translation,
                  AnglesAround(initial.yaw, window.yaw_rad, options.coarse_step_rad), coarse_half,
-                 step, LikelihoodTable(options.coarse_sigma_m, max_d, options), scale, prior);
+                 step, coarse_table, scale, prior);
+  // A best heading on the window's edge says the true one may lie beyond it: extend the
+  // heading window band by band while the best stays on the outermost angle. The prior is the
+  // window's still (a weaker one let the scan's other optima win: docs/lidar-slam.md), so a
+  // heading beyond the window must earn its place against it.
+  const double yaw_step = options.coarse_step_rad;
+  const int band = static_cast<int>(std::ceil(window.yaw_rad / yaw_step));
+  const int last_allowed = static_cast<int>(
+      std::floor(options.search_yaw_edge_extend * static_cast<double>(band) + 1e-9));
+  int outer = band;
+  const auto on_edge = [&](const GridBest& best) {
+    return std::lround(std::abs(WrapAngle(best.yaw - initial.yaw)) / yaw_step) >= outer;
+  };
+  while (band > 0 && outer < last_allowed && on_edge(coarse)) {
+    const int next = std::min(outer + band, last_allowed);
+    const GridBest extended =
+        SearchGrid(map, points, initial.translation,
+                   AnglesInBand(initial.yaw, outer + 1, next, yaw_step), coarse_half, step,
+                   coarse_table, scale, prior);
+    outer = next;
+    // Strictly better only, as inside the grid: a tie keeps the pose nearer the prior.
+    if (extended.score > coarse.score) coarse = extended;
+  }
   // Fine: one-cell steps over +-1 coarse step, finer angles over +-1 coarse angle step.
   const Eigen::Vector2d coarse_origin =
       initial.translation + cell * Eigen::Vector2d(coarse.dx, coarse.dy);

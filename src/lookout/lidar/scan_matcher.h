@@ -48,6 +48,8 @@ struct PosePrior {
   double sigma_yaw_rad = 1.0;
 };
 PosePrior PriorFromWindow(const Pose2& mean, const SearchWindow& window);
+// The log of the prior's density at `pose`, up to its constant: -0.5 (Mahalanobis distance)^2.
+double PriorLogDensity(const PosePrior& prior, const Pose2& pose);
 SearchWindow SearchWindowFor(const Pose2& increment, const MatcherOptions& options);
 
 // The best pose of the coarse and then the fine grid around `initial`, by the points' summed

@@ -81,6 +81,41 @@ TEST(ScanMatcher, RecoversAKnownOffset) {
   }
 }
 
+TEST(ScanMatcher, HeadingWindowExtendsWhenTheBestIsOnItsEdge) {
+  const std::vector<sim::Shape> world = testing::Hall();
+  MatcherOptions off;
+  MatcherOptions on;
+  on.search_yaw_edge_extend = 2.0;
+  const LocalMap map = MappedHall(world, off);
+  const SearchWindow window{0.3, 0.15};
+  const std::uint64_t seed = 47;
+  Rng rng(seed);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Pose2 truth{rng.Uniform(-12.0, 12.0), rng.Uniform(-4.0, 4.0), rng.Uniform(-kPi, kPi)};
+    const ScanPoints points = ExtractScanPoints(testing::CastScan(world, truth), off);
+    // A heading error of 0.2-0.25 rad, beyond the 0.15 rad window, either sign.
+    const double sign = trial % 2 == 0 ? 1.0 : -1.0;
+    const Pose2 guess = truth * Pose2{rng.Uniform(-0.1, 0.1), rng.Uniform(-0.1, 0.1),
+                                      sign * rng.Uniform(0.2, 0.25)};
+    const double err_off = std::abs(
+        WrapAngle(CorrelativeSearch(map, points.match, guess, window, off).yaw - truth.yaw));
+    const Pose2 extended = CorrelativeSearch(map, points.match, guess, window, on);
+    // Without the extension the search stops at the window's edge, 0.05 rad or more short ...
+    EXPECT_GT(err_off, 0.04) << "seed " << seed << " trial " << trial;
+    // ... with it the heading comes out at the truth's coarse angle step, and the position too.
+    EXPECT_LT(std::abs(WrapAngle(extended.yaw - truth.yaw)), 0.01)
+        << "seed " << seed << " trial " << trial;
+    EXPECT_LT((extended.translation - truth.translation).norm(), 0.08)
+        << "seed " << seed << " trial " << trial;
+    // Inside the window the extension changes nothing: the best is not on the edge there.
+    const Pose2 near = truth * Pose2{0.05, -0.05, sign * 0.08};
+    const Pose2 a = CorrelativeSearch(map, points.match, near, window, off);
+    const Pose2 b = CorrelativeSearch(map, points.match, near, window, on);
+    EXPECT_EQ(a.translation, b.translation) << "seed " << seed << " trial " << trial;
+    EXPECT_EQ(a.yaw, b.yaw) << "seed " << seed << " trial " << trial;
+  }
+}
+
 TEST(ScanMatcher, GaussNewtonAloneConvergesFromASmallOffset) {
   const std::vector<sim::Shape> world = testing::Hall();
   const MatcherOptions o;

@@ -78,6 +78,9 @@ void MatcherOptions::Validate(const std::string& source) const {
           "must be finite and >= 0");
   Require(NonNegative(max_search_yaw_rad) && max_search_yaw_rad < 3.0, source,
           "matcher.max_search_yaw_rad", "must be in [0, 3)");
+  Require(std::isfinite(search_yaw_edge_extend) && search_yaw_edge_extend >= 1.0 &&
+              search_yaw_edge_extend <= 10.0,
+          source, "matcher.search_yaw_edge_extend", "must be in [1, 10]");
   Require(coarse_step_cells >= 1 && coarse_step_cells <= 100, source,
           "matcher.coarse_step_cells", "must be in [1, 100]");
   Require(Positive(coarse_step_rad), source, "matcher.coarse_step_rad", "must be finite and > 0");
@@ -89,6 +92,9 @@ void MatcherOptions::Validate(const std::string& source) const {
 }
 
 void ParticleFilterOptions::Validate(const std::string& source) const {
+  Require(std::isfinite(weight_prior_share) && weight_prior_share >= 0.0 &&
+              weight_prior_share <= 1.0,
+          source, "filter.weight_prior_share", "must be in [0, 1]");
   Require(particle_count >= 1 && particle_count <= 100000, source, "filter.particle_count",
           "must be in [1, 100000]");
   Require(std::isfinite(resample_ess_share) && resample_ess_share >= 0.0 &&

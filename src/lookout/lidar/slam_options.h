@@ -83,6 +83,13 @@ struct MatcherOptions {
   double search_yaw_per_m = 0.05;      // extra half-width per metre travelled
   double max_search_xy_m = 0.8;
   double max_search_yaw_rad = 0.4;
+  // When the coarse search's best heading lies on the edge of its window, the true heading may
+  // lie beyond it (an odometry heading error larger than the window expects: csail's scan 292,
+  // 0.18 rad against a 0.17 rad window). The heading window is then extended band by band (each
+  // band as wide as the window) while the best stays on the edge, up to this many times the
+  // window; the prior stays the window's. 1 turns it off. The extra bands cost only where the
+  // edge is hit.
+  double search_yaw_edge_extend = 1.0;
   // The coarse grid steps whole cells (lookups need no rounding); the fine grid steps one cell
   // and fine_step_rad over +-1 coarse step around the coarse best; Gauss-Newton goes below.
   int coarse_step_cells = 2;
@@ -106,6 +113,12 @@ struct ParticleFilterOptions {
   // (a corridor's axis, an open road). Without it the refinement has no prior and the
   // correlative search's pick along such an axis stays.
   bool refine_with_prior = false;
+  // Share of the odometry prior (centred on the particle's motion sample, sigma half the
+  // search window) in each particle's weight after its refinement. The refinement moves a
+  // particle to the scan's nearest optimum without a prior; with it, a particle that a fit
+  // slid far from its motion sample (along a corridor, to another optimum) must earn that
+  // distance in the scan's likelihood. 0 weighs by the scan alone.
+  double weight_prior_share = 0.0;
   std::uint64_t seed = 4;
 
   void Validate(const std::string& source = "lidar particle filter options") const;
