@@ -185,10 +185,9 @@ Pose2 CorrelativeSearch(const LocalMap& map, std::span<const Eigen::Vector2d> po
   const double scale = options.effective_beams / static_cast<double>(points.size());
   const PosePrior prior = PriorFromWindow(initial, window);
   const LikelihoodTable coarse_table(options.coarse_sigma_m, max_d, options);
-  GridBest coarse =
-      SearchGrid(map, points, initial.translation,
-                 AnglesAround(initial.yaw, window.yaw_rad, options.coarse_step_rad), coarse_half,
-                 step, coarse_table, scale, prior);
+  GridBest coarse = SearchGrid(map, points, initial.translation,
+                               AnglesAround(initial.yaw, window.yaw_rad, options.coarse_step_rad),
+                               coarse_half, step, coarse_table, scale, prior);
   // A best heading on the window's edge says the true one may lie beyond it: extend the
   // heading window band by band while the best stays on the outermost angle. The prior is the
   // window's still (a weaker one let the scan's other optima win: docs/lidar-slam.md), so a
@@ -203,10 +202,9 @@ Pose2 CorrelativeSearch(const LocalMap& map, std::span<const Eigen::Vector2d> po
   };
   while (band > 0 && outer < last_allowed && on_edge(coarse)) {
     const int next = std::min(outer + band, last_allowed);
-    const GridBest extended =
-        SearchGrid(map, points, initial.translation,
-                   AnglesInBand(initial.yaw, outer + 1, next, yaw_step), coarse_half, step,
-                   coarse_table, scale, prior);
+    const GridBest extended = SearchGrid(map, points, initial.translation,
+                                         AnglesInBand(initial.yaw, outer + 1, next, yaw_step),
+                                         coarse_half, step, coarse_table, scale, prior);
     outer = next;
     // Strictly better only, as inside the grid: a tie keeps the pose nearer the prior.
     if (extended.score > coarse.score) coarse = extended;

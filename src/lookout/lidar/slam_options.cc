@@ -92,9 +92,9 @@ void MatcherOptions::Validate(const std::string& source) const {
 }
 
 void ParticleFilterOptions::Validate(const std::string& source) const {
-  Require(std::isfinite(weight_prior_share) && weight_prior_share >= 0.0 &&
-              weight_prior_share <= 1.0,
-          source, "filter.weight_prior_share", "must be in [0, 1]");
+  Require(
+      std::isfinite(weight_prior_share) && weight_prior_share >= 0.0 && weight_prior_share <= 1.0,
+      source, "filter.weight_prior_share", "must be in [0, 1]");
   Require(particle_count >= 1 && particle_count <= 100000, source, "filter.particle_count",
           "must be in [1, 100000]");
   Require(std::isfinite(resample_ess_share) && resample_ess_share >= 0.0 &&
