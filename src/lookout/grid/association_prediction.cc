@@ -43,6 +43,7 @@ SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, doubl
   } else {
     w.half = (options.new_window_size_cells - 1) / 2;
     w.stride = options.new_window_stride_cells;
+    w.dense_half = options.new_window_dense_half_cells;
     w.stay_weight = options.new_stay_probability;
     w.stay_sigma_cells = options.min_sigma_cells;
     w.sigma_cells = std::max(w.sigma_cells, options.new_sigma_m / cell_size_m);
@@ -120,6 +121,8 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   a.target.resize(entries);
   a.entry_source.resize(entries);
   a.weight.resize(entries);
+  const bool with_share = options.moved_share_exponent > 0.0;
+  if (with_share) a.stay_share.assign(entries, 0.0f);
 
   ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
@@ -134,7 +137,11 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
                                   : kOutsideWindow;
         a.entry_source[first + k] = static_cast<std::uint32_t>(s);
       });
-      ComputePsi(w, &a.weight[first]);
+      // The stay component is the static hypothesis only where the prediction is no motion.
+      const bool static_prediction =
+          std::hypot(w.mean_x_cells, w.mean_y_cells) < 0.5 && w.stay_weight > 0.0;
+      ComputePsi(w, &a.weight[first],
+                 with_share && static_prediction ? &a.stay_share[first] : nullptr);
     }
   });
   return a;

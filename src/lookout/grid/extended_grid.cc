@@ -35,7 +35,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
 
   UpdateOccupancy(associations, targets, cells, z, options_, layers_.Values(ids_.occupancy),
                   layers_.Values(ids_.seen));                                              // 5
-  UpdateVelocity(associations, targets, cells, dt_s, geometry().cell_size_m(), options_,
+  UpdateVelocity(associations, targets, cells, dt_s, geometry().cell_size_m(), options_, z,
                  layers_.Values(ids_.occupancy), layers_.Values(ids_.seen),
                  VelocityLayers{layers_.Values(ids_.velocity_x_mps),
                                 layers_.Values(ids_.velocity_y_mps),

@@ -214,6 +214,68 @@ TEST(ExtendedGridReferenceTest, FastPathMatchesLiteralReference) {
   }
 }
 
+// The same with the coarse window's dense core and the moved share on: the reference builds the
+// core's samples and the share on its own.
+TEST(ExtendedGridReferenceTest, FastPathMatchesLiteralReferenceWithDenseCoreAndMovedShare) {
+  FilterOptions options;
+  options.enable_rigidity_constraint = false;
+  options.new_window_dense_half_cells = 2;
+  options.moved_share_exponent = 0.5;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ExpectMatchesReference(RunAgainstReference(seed, options));
+  }
+  options.enable_rigidity_constraint = true;
+  options.rigidity_exact_across_lattices = true;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + " exact rigidity");
+    ExpectMatchesReference(RunAgainstReference(seed, options));
+  }
+}
+
+// The dense core's entries: every displacement within +-dense_half of the centre once, the
+// lattice's where it has them, EntryOf the inverse of Displacement, Psi summing to one.
+TEST(SearchWindowTest, DenseCoreHoldsEveryNearDisplacementOnce) {
+  SearchWindow w;
+  w.center = {3, -1};
+  w.half = 6;
+  w.stride = 2;
+  w.dense_half = 2;
+  w.mean_x_cells = 3.3;
+  w.mean_y_cells = -0.8;
+  w.sigma_cells = 6.0;
+  w.stay_weight = 0.5;
+  w.stay_sigma_cells = 0.4;
+  EXPECT_EQ(w.EntryCount(), 169u + 16u);
+  std::vector<int> hits(25, 0);
+  for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+    const CellIndex d = w.Displacement(k);
+    EXPECT_EQ(w.EntryOf(d), static_cast<std::int64_t>(k));
+    const int x = d.ix - w.center.ix, y = d.iy - w.center.iy;
+    if (std::abs(x) <= 2 && std::abs(y) <= 2) ++hits[static_cast<std::size_t>((y + 2) * 5 + x + 2)];
+  }
+  for (const int h : hits) EXPECT_EQ(h, 1);
+  std::size_t k_each = 0;
+  w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
+    EXPECT_EQ(k, k_each++);
+    EXPECT_EQ(d, w.Displacement(k));
+  });
+  EXPECT_EQ(k_each, w.EntryCount());
+  EXPECT_EQ(w.EntryOf({w.center.ix + 3, w.center.iy}), -1);  // off the lattice, outside the core
+  std::vector<float> psi(w.EntryCount()), share(w.EntryCount());
+  ComputePsi(w, psi.data(), share.data());
+  double sum = 0.0;
+  for (const float p : psi) sum += static_cast<double>(p);
+  EXPECT_NEAR(sum, 1.0, 1e-5);
+  // The sample nearest the mean, (3, -1), is a lattice one; its neighbour (4, -1) a core one,
+  // which the stay component (sigma 0.4) reaches and the lattice alone could not.
+  const auto nearest = static_cast<std::size_t>(w.EntryOf({3, -1}));
+  const auto core = static_cast<std::size_t>(w.EntryOf({4, -1}));
+  EXPECT_GE(core, 169u);
+  EXPECT_GT(share[nearest], 0.9f);
+  EXPECT_GT(psi[core], 0.01f);
+}
+
 // The factorised rigidity term against the literal O(M^6) one. Exact where a linked neighbour's
 // window has the cell's lattice; elsewhere the neighbour's pmf is replaced by the Gaussian of its
 // two moments. The random worlds are a hard case (strong random links, coarse stride-2 windows

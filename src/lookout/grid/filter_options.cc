@@ -32,6 +32,13 @@ void FilterOptions::Validate(const std::string& source) const {
           source, "new_window_size_cells", "must be odd and in [1, 31]");
   Require(new_window_stride_cells >= 1 && new_window_stride_cells <= 4, source,
           "new_window_stride_cells", "must be in [1, 4]");
+  Require(new_window_dense_half_cells >= 0 &&
+              new_window_dense_half_cells <=
+                  new_window_stride_cells * ((new_window_size_cells - 1) / 2),
+          source, "new_window_dense_half_cells",
+          "must be in [0, new_window_stride_cells * (new_window_size_cells - 1) / 2]");
+  Require(std::isfinite(moved_share_exponent) && moved_share_exponent >= 0.0, source,
+          "moved_share_exponent", "must be finite and >= 0");
   Require(InOpenUnit(seen_threshold), source, "seen_threshold", "must be in (0, 1)");
   Require(max_displacement_cells >= 0 && max_displacement_cells <= 64, source,
           "max_displacement_cells", "must be in [0, 64]");

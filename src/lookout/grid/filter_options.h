@@ -34,6 +34,9 @@ struct FilterOptions {
   // once the velocity is known the fine window takes over, centred on it.
   int new_window_size_cells = 13;
   int new_window_stride_cells = 2;
+  // ... beside a dense (stride 1) core of +-new_window_dense_half_cells around the window's
+  // centre (0: none): a coarse lattice has no sample at a walker's 0.6-0.8 cell a cycle.
+  int new_window_dense_half_cells = 0;
   double seen_threshold = 0.5;
   // ... and so is occupancy whose velocity is not yet trusted (confidence below this): the
   // coarse window is then centred on the uncertain prediction, so an early wrong estimate
@@ -106,6 +109,17 @@ struct FilterOptions {
   double velocity_blend = 0.3;
   // The displacement spread (cells^2) at which the confidence is one half.
   double confidence_spread_cells2 = 2.0;
+  // The observed confidence is multiplied by M^moved_share_exponent, M the moved share of the
+  // carried mass (the part of it that step 2's "stays in place" component did not carry, where
+  // the prediction is no motion): occupancy explained by staying is no evidence of motion. 0:
+  // off. 0.5 with the dense core met the false-dynamic goal (docs/grid.md, 2026-12-02).
+  double moved_share_exponent = 0.0;
+  // Where a source's mass survived (its per-source mean displacement, eq. 14 as built): false,
+  // weighted by the target's posterior occupancy O; true, only into targets the scan did not see
+  // free, weighted by the occupancy evidence max(0, 2 O - 1). Why: a fast body's first
+  // association puts most of its mass on its old cells and the free road around (odds 0.43
+  // each), whose posterior stays 0.1-0.3 and drags the mean towards zero.
+  bool survival_needs_evidence = false;
 
   // --- step 8, classes
   double class_floor = 0.01;           // mixed in uniformly each cycle: classes stay revisable

@@ -43,19 +43,25 @@ WindowIndexer::WindowIndexer(const ScrollingGridGeometry& geometry)
 }
 
 std::int64_t SearchWindow::EntryOf(const CellIndex& d) const {
-  const int dx = d.ix - center.ix + stride * half;
-  const int dy = d.iy - center.iy + stride * half;
-  if (dx < 0 || dy < 0 || dx % stride != 0 || dy % stride != 0) return -1;
-  const int u = dx / stride;
-  const int v = dy / stride;
-  if (u >= size() || v >= size()) return -1;
-  return static_cast<std::int64_t>(v) * size() + u;
+  const int x = d.ix - center.ix;
+  const int y = d.iy - center.iy;
+  if (OnLattice(x, y)) {
+    const int u = x / stride + half;
+    const int v = y / stride + half;
+    return static_cast<std::int64_t>(v) * size() + u;
+  }
+  if (!HasDenseCore() || std::abs(x) > dense_half || std::abs(y) > dense_half) return -1;
+  std::int64_t found = -1;
+  ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {
+    if (o.ix == x && o.iy == y) found = static_cast<std::int64_t>(k);
+  });
+  return found;
 }
 
-void ComputePsi(const SearchWindow& w, float* psi) {
+void ComputePsi(const SearchWindow& w, float* psi, float* stay_share) {
   // The isotropic Gaussian is a product of two 1-D Gaussians over the window's columns and rows:
-  // 2 n exponentials instead of n^2 (per component), and the sum over the window is the product
-  // of the two 1-D sums.
+  // 2 n exponentials instead of n^2 (per component), and the sum over the lattice is the product
+  // of the two 1-D sums. The dense core's few entries are summed directly.
   constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
   const int n = w.size();
   assert(n <= kMaxSide);
@@ -72,8 +78,14 @@ void ComputePsi(const SearchWindow& w, float* psi) {
       sum_x += x[static_cast<std::size_t>(u)];
       sum_y += y[static_cast<std::size_t>(u)];
     }
-    // The window holds its own mean (|centre - mean| <= 0.5 cell), so both sums are > 0.
-    return sum_x * sum_y;
+    double dense_sum = 0.0;
+    w.ForEachDenseOffset([&](std::size_t, const CellIndex& o) {
+      const double ex = w.center.ix + o.ix - w.mean_x_cells;
+      const double ey = w.center.iy + o.iy - w.mean_y_cells;
+      dense_sum += std::exp(-(ex * ex + ey * ey) * inv_two_var);
+    });
+    // The window holds its own mean (|centre - mean| <= 0.5 cell), so the sum is > 0.
+    return sum_x * sum_y + dense_sum;
   };
   const double move_scale = (1.0 - w.stay_weight) / gaussians(w.sigma_cells, gx, gy);
   const double stay_scale =
@@ -82,12 +94,31 @@ void ComputePsi(const SearchWindow& w, float* psi) {
     const auto vi = static_cast<std::size_t>(v);
     const double row = move_scale * gy[vi];
     const double stay_row = stay_scale * sy[vi];
-    float* out = psi + static_cast<std::size_t>(v) * static_cast<std::size_t>(n);
+    const std::size_t base = static_cast<std::size_t>(v) * static_cast<std::size_t>(n);
     for (int u = 0; u < n; ++u) {
       const auto ui = static_cast<std::size_t>(u);
-      out[ui] = static_cast<float>(row * gx[ui] + stay_row * sx[ui]);
+      const double move = row * gx[ui];
+      const double stay = stay_row * sx[ui];
+      psi[base + ui] = static_cast<float>(move + stay);
+      if (stay_share) {
+        stay_share[base + ui] = move + stay > 0.0 ? static_cast<float>(stay / (move + stay)) : 0.0f;
+      }
     }
   }
+  if (!w.HasDenseCore()) return;
+  const double inv_move = 1.0 / (2.0 * w.sigma_cells * w.sigma_cells);
+  const double inv_stay = 1.0 / (2.0 * w.stay_sigma_cells * w.stay_sigma_cells);
+  w.ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {
+    const double ex = w.center.ix + o.ix - w.mean_x_cells;
+    const double ey = w.center.iy + o.iy - w.mean_y_cells;
+    const double r2 = ex * ex + ey * ey;
+    const double move = move_scale * std::exp(-r2 * inv_move);
+    const double stay = stay_scale > 0.0 ? stay_scale * std::exp(-r2 * inv_stay) : 0.0;
+    psi[k] = static_cast<float>(move + stay);
+    if (stay_share) {
+      stay_share[k] = move + stay > 0.0 ? static_cast<float>(stay / (move + stay)) : 0.0f;
+    }
+  });
 }
 
 void FilterWorkspace::Resize(std::size_t cells) {

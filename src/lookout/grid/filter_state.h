@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -71,12 +72,18 @@ class WindowIndexer {
 inline constexpr std::int64_t kOutsideWindow = -1;
 
 // One source's search window (eq. 8): candidate displacements center + stride * (u - half,
-// v - half) for u, v in [0, 2 half], entry k = v * size + u. The Gaussian of eq. 8 is centred on
-// the exact predicted displacement `mean`, the window on its rounding.
+// v - half) for u, v in [0, 2 half], entry k = v * size + u (the lattice), then, when the lattice
+// is coarse (stride > 1) and dense_half > 0, the dense core: the displacements center + (x, y),
+// |x|, |y| <= dense_half, that the lattice does not hold, in row order (entries LatticeCount()
+// on). The Gaussian of eq. 8 is centred on the exact predicted displacement `mean`, the window on
+// its rounding.
 struct SearchWindow {
   CellIndex center;
   int half = 0;
   int stride = 1;
+  // Why a dense core: a coarse window has no sample at a walker's 0.6-0.8 cell a cycle; the core
+  // gives slow motion samples of its own without the 625 entries of a dense +-12-cell window.
+  int dense_half = 0;
   double mean_x_cells = 0.0;
   double mean_y_cells = 0.0;
   double sigma_cells = 1.0;
@@ -87,11 +94,50 @@ struct SearchWindow {
   double stay_weight = 0.0;
   double stay_sigma_cells = 1.0;
   int size() const { return 2 * half + 1; }
-  std::size_t EntryCount() const {
+  std::size_t LatticeCount() const {
     return static_cast<std::size_t>(size()) * static_cast<std::size_t>(size());
+  }
+  bool HasDenseCore() const { return stride > 1 && dense_half > 0; }
+  // Whether the offset (x, y) from the centre lies on the lattice.
+  bool OnLattice(int x, int y) const {
+    return x % stride == 0 && y % stride == 0 && std::abs(x) <= stride * half &&
+           std::abs(y) <= stride * half;
+  }
+  std::size_t DenseCount() const {
+    if (!HasDenseCore()) return 0;
+    std::size_t n = 0;
+    for (int y = -dense_half; y <= dense_half; ++y) {
+      for (int x = -dense_half; x <= dense_half; ++x) {
+        if (!OnLattice(x, y)) ++n;
+      }
+    }
+    return n;
+  }
+  std::size_t EntryCount() const { return LatticeCount() + DenseCount(); }
+  bool SameEntries(const SearchWindow& o) const {
+    return center == o.center && stride == o.stride && half == o.half &&
+           (HasDenseCore() ? dense_half : 0) == (o.HasDenseCore() ? o.dense_half : 0);
+  }
+  // f(k, offset from the centre) over the dense core's entries, k from LatticeCount() on.
+  template <typename F>
+  void ForEachDenseOffset(const F& f) const {
+    if (!HasDenseCore()) return;
+    std::size_t k = LatticeCount();
+    for (int y = -dense_half; y <= dense_half; ++y) {
+      for (int x = -dense_half; x <= dense_half; ++x) {
+        if (!OnLattice(x, y)) f(k++, CellIndex{x, y});
+      }
+    }
   }
   CellIndex Displacement(std::size_t k) const {
     const int n = size();
+    if (k >= LatticeCount()) {
+      CellIndex out = center;
+      ForEachDenseOffset([&](std::size_t j, const CellIndex& o) {
+        if (j == k) out = {center.ix + o.ix, center.iy + o.iy};
+      });
+      return out;
+    }
     const int u = static_cast<int>(k % static_cast<std::size_t>(n));
     const int v = static_cast<int>(k / static_cast<std::size_t>(n));
     return {center.ix + stride * (u - half), center.iy + stride * (v - half)};
@@ -106,13 +152,17 @@ struct SearchWindow {
       const int dy = center.iy + stride * (v - half);
       for (int u = 0; u < n; ++u, ++k) f(k, CellIndex{center.ix + stride * (u - half), dy});
     }
+    ForEachDenseOffset([&](std::size_t j, const CellIndex& o) {
+      f(j, CellIndex{center.ix + o.ix, center.iy + o.iy});
+    });
   }
   // The entry of displacement d, or -1 when d is not one of the window's samples.
   std::int64_t EntryOf(const CellIndex& d) const;
 };
 
-// Psi of eq. 8-9 over the window's entries (EntryCount() values summing to 1).
-void ComputePsi(const SearchWindow& window, float* psi);
+// Psi of eq. 8-9 over the window's entries (EntryCount() values summing to 1); with stay_share,
+// also the share of each entry that the stay component holds.
+void ComputePsi(const SearchWindow& window, float* psi, float* stay_share = nullptr);
 
 // The associations of one cycle, structure of arrays. Sources are the cells IsSource selects
 // (association_prediction.h), in storage order; their previous state is copied here, so the
@@ -134,6 +184,10 @@ struct Associations {
   std::vector<std::int64_t> target;      // storage index of i, or kOutsideWindow
   std::vector<std::uint32_t> entry_source;
   std::vector<float> weight;             // P(j -> i), summing to 1 over each source's window
+  // The share of P(j -> i) that "stays in place" holds (step 2's mixture, where the prediction
+  // is no motion; eq. 10-11 scale an entry as a whole, so the share carries through). Filled
+  // only when FilterOptions::moved_share_exponent > 0.
+  std::vector<float> stay_share;
 
   std::size_t SourceCount() const { return source.size(); }
   std::size_t EntryCount() const { return target.size(); }

@@ -36,20 +36,35 @@ DisplacementMoments MomentsOf(const Associations& a, std::size_t s) {
   return m;
 }
 
+// exp(-delta^2 / (2 r^2)) for integer offsets delta = 0, 1, ...: every displacement is whole
+// cells, so the rigidity kernel's 1-D factors are table reads (the same values as the exp).
+std::vector<double> IntegerKernel(double r2, int max_offset) {
+  std::vector<double> k(static_cast<std::size_t>(max_offset) + 1);
+  for (int d = 0; d <= max_offset; ++d) {
+    k[static_cast<std::size_t>(d)] = std::exp(-static_cast<double>(d) * d / (2.0 * r2));
+  }
+  return k;
+}
+
+double KernelAt(const std::vector<double>& k, int delta) {
+  const auto a = static_cast<std::size_t>(std::abs(delta));
+  return a < k.size() ? k[a] : 0.0;
+}
+
 // B_y(d) = sum_a' Pw_y(a') K(d - a') at a displacement d that is not one of y's window samples
 // (y's window has another stride or centre than the cell's): summed directly over y's window,
-// separably (K is a product of two 1-D Gaussians). Exact, as the blurred table is where it
-// applies (FilterOptions::rigidity_exact_across_lattices).
-double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d, double r2) {
+// separably over its lattice (K is a product of two 1-D Gaussians), entry by entry over its
+// dense core. Exact, as the blurred table is where it applies
+// (FilterOptions::rigidity_exact_across_lattices).
+double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d,
+              const std::vector<double>& kernel) {
   constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
   const int n = w.size();
   std::array<double, kMaxSide> kx{}, ky{};
-  const double inv_two_r2 = 1.0 / (2.0 * r2);
   for (int u = 0; u < n; ++u) {
-    const double ex = d.ix - (w.center.ix + w.stride * (u - w.half));
-    const double ey = d.iy - (w.center.iy + w.stride * (u - w.half));
-    kx[static_cast<std::size_t>(u)] = std::exp(-ex * ex * inv_two_r2);
-    ky[static_cast<std::size_t>(u)] = std::exp(-ey * ey * inv_two_r2);
+    const int offset = w.stride * (u - w.half);
+    kx[static_cast<std::size_t>(u)] = KernelAt(kernel, d.ix - (w.center.ix + offset));
+    ky[static_cast<std::size_t>(u)] = KernelAt(kernel, d.iy - (w.center.iy + offset));
   }
   double sum = 0.0;
   for (int v = 0; v < n; ++v) {
@@ -62,6 +77,10 @@ double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d, double 
     }
     sum += gy * row_sum;
   }
+  w.ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {
+    sum += static_cast<double>(p[k]) * KernelAt(kernel, d.ix - (w.center.ix + o.ix)) *
+           KernelAt(kernel, d.iy - (w.center.iy + o.iy));
+  });
   return sum;
 }
 
@@ -98,6 +117,8 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
   const bool exact = options.rigidity_exact_across_lattices;
   std::vector<float> blurred(options.enable_rigidity_constraint ? a.EntryCount() : 0);
   const double r2 = options.rigidity_sigma_cells * options.rigidity_sigma_cells;
+  // Offsets between two samples of windows up to 31 wide, stride 4, centred up to 64 cells apart.
+  const std::vector<double> integer_kernel = IntegerKernel(r2, 4 * 64 + 4 * 31);
   if (options.enable_rigidity_constraint) {
     ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
       std::vector<double> kernel, rows, column;
@@ -144,6 +165,29 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           }
           for (std::size_t u = 0; u < n; ++u) out[v * n + u] = static_cast<float>(column[u]);
         }
+        if (w.HasDenseCore()) {
+          // The dense core: its entries blurred onto the lattice, and the whole window (lattice
+          // and core) blurred onto each core entry, directly (a few entries).
+          std::array<double, 31> kx{}, ky{};
+          w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
+            const double pq = static_cast<double>(p[q]);
+            if (pq == 0.0) return;
+            for (std::size_t u = 0; u < n; ++u) {
+              const int lu = w.stride * (static_cast<int>(u) - w.half);
+              kx[u] = KernelAt(integer_kernel, lu - o.ix);
+              ky[u] = KernelAt(integer_kernel, lu - o.iy);
+            }
+            for (std::size_t v = 0; v < n; ++v) {
+              for (std::size_t u = 0; u < n; ++u) {
+                out[v * n + u] += static_cast<float>(pq * ky[v] * kx[u]);
+              }
+            }
+          });
+          w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
+            out[q] = static_cast<float>(
+                BlurAt(w, p, CellIndex{w.center.ix + o.ix, w.center.iy + o.iy}, integer_kernel));
+          });
+        }
       }
     });
   }
@@ -178,8 +222,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           const std::uint32_t y = workspace.source_of_cell[indexer.Storage(nx, ny)];
           if (y == FilterWorkspace::kNone) continue;
           const SearchWindow& wy = a.window[y];
-          const bool same_lattice = wy.center == w.center && wy.stride == w.stride &&
-                                    wy.half == w.half;
+          const bool same_lattice = wy.SameEntries(w);
           links[link_count++] = Link{strength, &wy, &a.weight[a.first_entry[y]],
                                      &blurred[a.first_entry[y]], &moments[y], same_lattice};
         }
@@ -202,7 +245,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
             } else if (exact) {
               const std::int64_t ky = link.window->EntryOf(d);
               agree = ky >= 0 ? static_cast<double>(link.blurred[static_cast<std::size_t>(ky)])
-                              : BlurAt(*link.window, link.weight, d, r2);
+                              : BlurAt(*link.window, link.weight, d, integer_kernel);
             } else {
               const double var = r2 + link.moments->variance_cells2;
               const double ex = d.ix - link.moments->mean_x_cells;

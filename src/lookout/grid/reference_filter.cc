@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lookout/grid/association_prediction.h"
+#include "lookout/grid/velocity_update.h"
 
 namespace lookout::grid {
 namespace {
@@ -14,6 +15,7 @@ struct Move {
   CellIndex displacement;
   long target = -1;  // storage index, -1 outside the window
   double p = 0.0;
+  double stay_share = 0.0;  // the share of p that "stays in place" holds
 };
 
 struct Source {
@@ -66,28 +68,47 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
       const SearchWindow w = SearchWindowFor(s.vx, s.vy, static_cast<double>(seen[cell]),
                                              s.confidence, pmf,
                                              dt_s, cell_m, options);
-      double g_sum = 0.0, stay_sum = 0.0;
+      // The window's samples: the lattice, then the dense core's displacements off it.
+      std::vector<CellIndex> displacements;
       for (int v = 0; v < w.size(); ++v) {
         for (int u = 0; u < w.size(); ++u) {
-          Move m;
-          m.displacement = {w.center.ix + w.stride * (u - w.half),
-                            w.center.iy + w.stride * (v - w.half)};
-          const CellIndex t{lx + m.displacement.ix, ly + m.displacement.iy};
-          if (t.ix >= 0 && t.iy >= 0 && t.ix < geometry.width() && t.iy < geometry.height()) {
-            m.target = static_cast<long>(geometry.StorageIndexOfLocal(t));
-          }
-          const double ex = m.displacement.ix - w.mean_x_cells;
-          const double ey = m.displacement.iy - w.mean_y_cells;
-          g_sum += Gaussian(ex, ey, w.sigma_cells);
-          stay_sum += Gaussian(ex, ey, w.stay_sigma_cells);
-          s.moves.push_back(m);
+          displacements.push_back({w.center.ix + w.stride * (u - w.half),
+                                   w.center.iy + w.stride * (v - w.half)});
         }
       }
+      if (w.stride > 1) {
+        for (int y = -w.dense_half; y <= w.dense_half; ++y) {
+          for (int x = -w.dense_half; x <= w.dense_half; ++x) {
+            if (x % w.stride != 0 || y % w.stride != 0) {
+              displacements.push_back({w.center.ix + x, w.center.iy + y});
+            }
+          }
+        }
+      }
+      double g_sum = 0.0, stay_sum = 0.0;
+      for (const CellIndex& d : displacements) {
+        Move m;
+        m.displacement = d;
+        const CellIndex t{lx + m.displacement.ix, ly + m.displacement.iy};
+        if (t.ix >= 0 && t.iy >= 0 && t.ix < geometry.width() && t.iy < geometry.height()) {
+          m.target = static_cast<long>(geometry.StorageIndexOfLocal(t));
+        }
+        const double ex = m.displacement.ix - w.mean_x_cells;
+        const double ey = m.displacement.iy - w.mean_y_cells;
+        g_sum += Gaussian(ex, ey, w.sigma_cells);
+        stay_sum += Gaussian(ex, ey, w.stay_sigma_cells);
+        s.moves.push_back(m);
+      }
+      // The stay component is the static hypothesis only where the prediction is no motion.
+      const bool static_prediction =
+          std::hypot(w.mean_x_cells, w.mean_y_cells) < 0.5 && w.stay_weight > 0.0;
       for (Move& m : s.moves) {
         const double ex = m.displacement.ix - w.mean_x_cells;
         const double ey = m.displacement.iy - w.mean_y_cells;
-        m.p = (1.0 - w.stay_weight) * Gaussian(ex, ey, w.sigma_cells) / g_sum +
-              w.stay_weight * Gaussian(ex, ey, w.stay_sigma_cells) / stay_sum;
+        const double move = (1.0 - w.stay_weight) * Gaussian(ex, ey, w.sigma_cells) / g_sum;
+        const double stay = w.stay_weight * Gaussian(ex, ey, w.stay_sigma_cells) / stay_sum;
+        m.p = move + stay;
+        m.stay_share = static_prediction && m.p > 0.0 ? stay / m.p : 0.0;
       }
       source_of[cell] = static_cast<long>(sources.size());
       sources.push_back(std::move(s));
@@ -237,7 +258,9 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
     double ws = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
     for (const Move& m : sources[j].moves) {
       if (m.target < 0) continue;
-      const double w = m.p * static_cast<double>(occupancy[static_cast<std::size_t>(m.target)]);
+      const auto t = static_cast<std::size_t>(m.target);
+      const double w = m.p * SurvivalWeight(static_cast<double>(occupancy[t]),
+                                            static_cast<double>(z.p_occupied[t]), options);
       ws += w;
       sx += w * m.displacement.ix;
       sy += w * m.displacement.iy;
@@ -248,11 +271,13 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
     source_my[j] = sy / ws;
     source_var[j] = std::max(0.0, s2 / ws - source_mx[j] * source_mx[j] - source_my[j] * source_my[j]);
   }
+  std::vector<double> stayed(n, 0.0);
   for (std::size_t j = 0; j < sources.size(); ++j) {
     for (const Move& m : sources[j].moves) {
       if (m.target < 0) continue;
       const auto i = static_cast<std::size_t>(m.target);
       const double w = m.p * sources[j].occupancy;
+      stayed[i] += w * m.stay_share;
       dx[i] += w * source_mx[j];
       dy[i] += w * source_my[j];
       d2[i] += w * (source_var[j] + source_mx[j] * source_mx[j] + source_my[j] * source_my[j]);
@@ -279,9 +304,12 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
     const double b = 1.0 - (1.0 - alpha) * c_prev;
     vx[i] = static_cast<float>((1.0 - b) * cvx[i] / ws + b * mx * cell_m / dt_s);
     vy[i] = static_cast<float>((1.0 - b) * cvy[i] / ws + b * my * cell_m / dt_s);
-    confidence[i] = static_cast<float>(
-        static_cast<double>(seen[i]) *
-        ((1.0 - alpha) * c_prev + alpha / (1.0 + spread / options.confidence_spread_cells2)));
+    double c_obs = 1.0 / (1.0 + spread / options.confidence_spread_cells2);
+    if (options.moved_share_exponent > 0.0) {
+      c_obs *= std::pow(std::clamp(1.0 - stayed[i] / ws, 0.0, 1.0), options.moved_share_exponent);
+    }
+    confidence[i] =
+        static_cast<float>(static_cast<double>(seen[i]) * ((1.0 - alpha) * c_prev + alpha * c_obs));
   }
 }
 

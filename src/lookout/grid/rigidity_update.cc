@@ -18,7 +18,7 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
         double overlap = 0.0;
         const float* px = &a.weight[a.first_entry[x]];
         const float* py = &a.weight[a.first_entry[y]];
-        if (wy.center == wx.center && wy.stride == wx.stride && wy.half == wx.half) {
+        if (wy.SameEntries(wx)) {
           // One lattice (most neighbours of one body): entry k is the same displacement in both.
           for (std::size_t k = 0; k < wx.EntryCount(); ++k) {
             overlap += static_cast<double>(px[k]) * static_cast<double>(py[k]);
@@ -26,12 +26,12 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
           links[x * kNeighbourCount + d] = static_cast<float>(overlap);
           continue;
         }
-        for (std::size_t k = 0; k < wx.EntryCount(); ++k) {
-          const std::int64_t ky = wy.EntryOf(wx.Displacement(k));
-          if (ky < 0) continue;
-          overlap += static_cast<double>(a.weight[a.first_entry[x] + k]) *
-                     static_cast<double>(a.weight[a.first_entry[y] + static_cast<std::size_t>(ky)]);
-        }
+        wx.ForEachDisplacement([&](std::size_t k, const CellIndex& disp) {
+          const std::int64_t ky = wy.EntryOf(disp);
+          if (ky < 0) return;
+          overlap += static_cast<double>(px[k]) *
+                     static_cast<double>(py[static_cast<std::size_t>(ky)]);
+        });
         links[x * kNeighbourCount + d] = static_cast<float>(overlap);
       }
     }

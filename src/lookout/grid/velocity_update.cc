@@ -1,18 +1,25 @@
 #include "lookout/grid/velocity_update.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lookout::grid {
 
+double SurvivalWeight(double o, double m, const FilterOptions& options) {
+  if (!options.survival_needs_evidence) return o;
+  return m < 0.5 ? 0.0 : std::max(0.0, 2.0 * o - 1.0);  // 0.5: unobserved, kept
+}
+
 void UpdateVelocity(const Associations& a, const TargetIndex& targets,
                     const std::vector<UpdateCell>& cells, double dt_s, double cell_size_m,
-                    const FilterOptions& options, std::span<const float> occupancy,
-                    std::span<const float> seen,
+                    const FilterOptions& options, const MeasurementGrid& z,
+                    std::span<const float> occupancy, std::span<const float> seen,
                     const VelocityLayers& out) {
   const double alpha = options.velocity_blend;
   const double cells_to_mps = cell_size_m / dt_s;
   // Below this carried weight the cell received nothing worth an estimate.
   constexpr double kMinWeight = 1e-6;
+  const bool with_share = options.moved_share_exponent > 0.0;
   // Per source: the mean and variance of where its mass went (its displacement posterior).
   const std::size_t sources = a.SourceCount();
   std::vector<double> source_mean_x(sources), source_mean_y(sources), variance(sources);
@@ -22,11 +29,13 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
       const std::size_t first = a.first_entry[s];
       a.window[s].ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
         const std::size_t e = first + k;
+        const auto t = static_cast<std::size_t>(a.target[e]);  // read only inside the window
         // Where the mass survived: a move into a cell now believed free destroyed it.
         const double w = a.target[e] == kOutsideWindow
                              ? 0.0
                              : static_cast<double>(a.weight[e]) *
-                                   static_cast<double>(occupancy[static_cast<std::size_t>(a.target[e])]);
+                                   SurvivalWeight(static_cast<double>(occupancy[t]),
+                                                  static_cast<double>(z.p_occupied[t]), options);
         w_sum += w;
         sx += w * d.ix;
         sy += w * d.iy;
@@ -43,9 +52,11 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
     for (std::size_t u = begin; u < end; ++u) {
       const UpdateCell& c = cells[u];
       double sum = 0.0, dx = 0.0, dy = 0.0, d2 = 0.0, vx = 0.0, vy = 0.0, conf = 0.0;
+      double stayed = 0.0;
       if (c.target_slot != FilterWorkspace::kNone) {
         sum = GatherWeighted(a, targets, c.target_slot,
-                             [&](std::uint32_t /*e*/, std::uint32_t s, double w) {
+                             [&](std::uint32_t e, std::uint32_t s, double w) {
+                               if (with_share) stayed += w * static_cast<double>(a.stay_share[e]);
                                dx += w * source_mean_x[s];
                                dy += w * source_mean_y[s];
                                d2 += w * (variance[s] + source_mean_x[s] * source_mean_x[s] +
@@ -69,7 +80,12 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
       const double b = 1.0 - (1.0 - alpha) * c_prev;
       const double new_vx = (1.0 - b) * vx / sum + b * mean_x * cells_to_mps;
       const double new_vy = (1.0 - b) * vy / sum + b * mean_y * cells_to_mps;
-      const double c_obs = 1.0 / (1.0 + spread / options.confidence_spread_cells2);
+      double c_obs = 1.0 / (1.0 + spread / options.confidence_spread_cells2);
+      if (with_share) {
+        // Occupancy explained by staying in place is no evidence of motion.
+        const double moved = std::clamp(1.0 - stayed / sum, 0.0, 1.0);
+        c_obs *= std::pow(moved, options.moved_share_exponent);
+      }
       const double new_conf =
           static_cast<double>(seen[c.cell]) * ((1.0 - alpha) * c_prev + alpha * c_obs);
       out.velocity_x_mps[c.cell] = static_cast<float>(new_vx);

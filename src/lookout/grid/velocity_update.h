@@ -32,8 +32,15 @@
 
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"
+#include "lookout/grid/inverse_sensor_model.h"
 
 namespace lookout::grid {
+
+// How much a source's move into a target of posterior occupancy `target_occupancy` and
+// measurement `target_measurement` counts towards the source's mean displacement
+// (FilterOptions::survival_needs_evidence). Pure.
+double SurvivalWeight(double target_occupancy, double target_measurement,
+                      const FilterOptions& options);
 
 struct VelocityLayers {
   std::span<float> velocity_x_mps;
@@ -44,8 +51,8 @@ struct VelocityLayers {
 // `seen` must already hold S_k (UpdateOccupancy). Parallel over the update cells; deterministic.
 void UpdateVelocity(const Associations& associations, const TargetIndex& targets,
                     const std::vector<UpdateCell>& cells, double dt_s, double cell_size_m,
-                    const FilterOptions& options, std::span<const float> occupancy,
-                    std::span<const float> seen,
+                    const FilterOptions& options, const MeasurementGrid& z,
+                    std::span<const float> occupancy, std::span<const float> seen,
                     const VelocityLayers& out);
 
 }  // namespace lookout::grid
