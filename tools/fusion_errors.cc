@@ -165,7 +165,8 @@ void RunOne(const lookout::sim::Scenario& scenario, lookout::app::LidarObjectSou
     std::vector<Vector2d> points;
     std::vector<Matrix2d> covariances;
     std::vector<bool> paired;
-    for (const lookout::LidarObject& o : cycle.objects->objects) {
+    // As fused: with the covariance fusion gave each (the camera's class where it paired).
+    for (const lookout::LidarObject& o : engine.lidar_as_fused().objects) {
       points.push_back(o.point_m);
       covariances.push_back(o.point_covariance);
       paired.push_back(lidar_paired[o.id]);

@@ -144,7 +144,10 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
     }
     const fusion::FusedObjectFrame* fused = pipeline.fused_objects();
     if (fusion_scorer && cycle.objects && fused && fused->stamp == stamp) {
-      fusion_scorer->AddFrame(*fused, *cycle.objects, pipeline.fusion()->stereo_at_lidar_time(),
+      // The lidar objects with the covariance fusion gave them, so that fusion.lidar_nees_mean
+      // scores what was fused.
+      fusion_scorer->AddFrame(*fused, pipeline.fusion()->lidar_as_fused(),
+                              pipeline.fusion()->stereo_at_lidar_time(),
                               eval::TrueObjectsInVehicleFrame(truth));
     }
     if (const LidarChainStage* chain = pipeline.lidar_chain()) {

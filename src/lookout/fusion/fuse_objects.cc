@@ -6,6 +6,7 @@
 #include "lookout/fusion/association.h"
 #include "lookout/fusion/gate.h"
 #include "lookout/fusion/gaussian_fusion.h"
+#include "lookout/fusion/lidar_point_model.h"
 #include "lookout/stereo/stereo_validation.h"
 
 namespace lookout::fusion {
@@ -90,6 +91,10 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     stereo_taken[pair.stereo] = true;
   }
 
+  result.lidar.stamp = lidar.stamp;
+  result.lidar.mount = lidar.mount;
+  result.lidar.ego_pose = lidar.ego_pose;
+  result.lidar.objects.reserve(lidar_objects.size());
   auto next_id = [&result] { return static_cast<std::uint32_t>(result.frame.objects.size()); };
   for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
     const LidarObject& l = *lidar_objects[j];
@@ -98,10 +103,20 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     f.lidar_id = l.id;
     f.front_start_m = l.front_start_m;
     f.front_end_m = l.front_end_m;
-    if (const auto i = stereo_of_lidar[j]) {
+    // Where the camera paired the object, the lidar point's covariance is the model's with the
+    // camera's class (a segmentation object has none of its own). An object the camera did not
+    // see keeps its source's (the grid's own class would be the one to use: not measured yet).
+    const auto paired = stereo_of_lidar[j];
+    LidarObject& as_fused = result.lidar.objects.emplace_back(l);
+    if (paired) {
+      as_fused.point_covariance = LidarPointCovariance(l, stereo[*paired].object_class,
+                                                       lidar.mount.translation,
+                                                       options.lidar_point);
+    }
+    if (const auto i = paired) {
       const stereo::StereoPoint& s = stereo[*i];
       const Gaussian2 position = FuseGaussians(
-          Gaussian2{lidar_points[j].point_m, lidar_points[j].covariance},
+          Gaussian2{as_fused.point_m, as_fused.point_covariance},
           Gaussian2{stereo_points[*i].point_m, stereo_points[*i].covariance});
       f.point_m = position.mean;
       f.point_covariance = position.covariance;
@@ -116,7 +131,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       f.stereo_id = s.id;
     } else {
       f.point_m = l.point_m;
-      f.point_covariance = l.point_covariance;
+      f.point_covariance = as_fused.point_covariance;
       f.velocity_mps = l.velocity_mps;
       f.velocity_covariance = l.velocity_covariance;
       f.class_pmf = l.class_pmf;

@@ -30,6 +30,9 @@ struct FuseObjectsResult {
   // Lidar objects left out for a non-finite point or velocity or a covariance that is not
   // positive definite (counted; the lidar stage should never make one).
   std::vector<std::uint32_t> dropped_lidar_ids;
+  // The lidar objects as fused: the usable ones, in their order, each with the point
+  // covariance fusion gave it (LidarPointCovariance: with the camera's class where paired).
+  LidarObjectFrame lidar;
 };
 
 // `stereo` must already be in the vehicle frame at lidar.stamp (FusionEngine predicts it).

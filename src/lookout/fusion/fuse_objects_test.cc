@@ -8,6 +8,7 @@
 
 #include "lookout/fusion/fusion_test_support.h"
 #include "lookout/fusion/gaussian_fusion.h"
+#include "lookout/fusion/lidar_point_model.h"
 
 namespace lookout::fusion {
 namespace {
@@ -61,7 +62,11 @@ LidarObjectFrame Frame(std::vector<LidarObject> objects) {
 TEST(FuseObjectsTest, PairIsFusedByCovariances) {
   const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
-  const FuseObjectsResult result = FuseObjects(lidar, stereo, {});
+  // The covariances as given: the lidar point model (which would add a pedestrian's round
+  // body to the lidar's, TheLidarPointTakesTheCamerasClass) is off here.
+  FusionOptions options;
+  options.lidar_point.enabled = false;
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
   ASSERT_EQ(result.frame.objects.size(), 1u);
   EXPECT_EQ(result.pairs, 1u);
   const FusedObject& f = result.frame.objects[0];
@@ -84,6 +89,36 @@ TEST(FuseObjectsTest, PairIsFusedByCovariances) {
   EXPECT_TRUE(f.dynamic);
   EXPECT_EQ(result.frame.stamp, lidar.stamp);
   EXPECT_EQ(result.frame.ego_pose.yaw, 0.1);
+}
+
+// The lidar point's covariance is the model's (lidar_point_model.h) with the camera's class
+// where the camera paired the object, and the pair is fused with it: a segmentation object
+// (its own class unknown) paired with a stereo pedestrian gets the round body's spread; one
+// the camera did not see keeps its own covariance.
+TEST(FuseObjectsTest, TheLidarPointTakesTheCamerasClass) {
+  LidarObject paired = MakeLidar(7, Vector2d(15.2, 0.1));
+  LidarObject alone = MakeLidar(8, Vector2d(15.0, 6.0));
+  paired.class_pmf = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  alone.class_pmf = paired.class_pmf;
+  const LidarObjectFrame lidar = Frame({paired, alone});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  FusionOptions options;
+  options.lidar_point.enabled = true;
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(result.pairs, 1u);
+  ASSERT_EQ(result.lidar.objects.size(), 2u);
+  const Matrix2d modelled = LidarPointCovariance(paired, ObjectClass::kPedestrian,
+                                                 kLidarMount.translation, options.lidar_point);
+  EXPECT_GT((modelled - paired.point_covariance).norm(), 1e-3);
+  EXPECT_EQ(result.lidar.objects[0].point_covariance, modelled);
+  EXPECT_EQ(result.lidar.objects[1].point_covariance, alone.point_covariance);
+  const Gaussian2 expected =
+      FuseGaussians({paired.point_m, modelled}, {stereo[0].point.point_m,
+                                                 stereo[0].point.covariance});
+  const FusedObject& f = result.frame.objects[0];
+  EXPECT_LT((f.point_m - expected.mean).norm(), 1e-12);
+  EXPECT_LT((f.point_covariance - expected.covariance).norm(), 1e-12);
+  EXPECT_EQ(result.frame.objects[1].point_covariance, alone.point_covariance);
 }
 
 TEST(FuseObjectsTest, ObjectsSeenByOneSensorAreKept) {

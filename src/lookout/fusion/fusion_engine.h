@@ -51,6 +51,9 @@ class FusionEngine {
   // (for metrics and display), and the ones dropped, with why (for the log).
   const std::vector<stereo::StereoPoint>& stereo_at_lidar_time() const { return stereo_; }
   const std::vector<stereo::Drop>& last_stereo_drops() const { return drops_; }
+  // Of the last Fuse call: the lidar objects as fused, each with the point covariance fusion
+  // gave it (FuseObjectsResult::lidar), for metrics of the lidar's own consistency.
+  const LidarObjectFrame& lidar_as_fused() const { return lidar_; }
 
  private:
   FusedObjectFrame FuseWith(const LidarObjectFrame& lidar, const StereoFrame& stereo,
@@ -62,6 +65,7 @@ class FusionEngine {
   Pose2 previous_ego_pose_;
   std::vector<stereo::StereoPoint> stereo_;
   std::vector<stereo::Drop> drops_;
+  LidarObjectFrame lidar_;
 };
 
 }  // namespace lookout::fusion

@@ -14,6 +14,7 @@ void Require(bool ok, const char* field, const char* what) {
 
 void FusionOptions::Validate() const {
   stereo.Validate();
+  lidar_point.Validate();
   Require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability",
           "must be in (0, 1)");
   Require(point_definition_sigma_m >= 0.0, "point_definition_sigma_m", "must be >= 0");

@@ -2,6 +2,7 @@
 
 // Options of the fusion stage (seed 004 section VI), one struct, units in the names.
 
+#include "lookout/fusion/lidar_point_model.h"
 #include "lookout/stereo/stereo_options.h"
 
 namespace lookout::fusion {
@@ -28,6 +29,11 @@ struct FusionOptions {
   // what the scan saw of the outline, the camera's the middle of its box's side): this much
   // disagreement (m, each axis) is allowed for in the gate. Not in the fused covariance.
   double point_definition_sigma_m = 0.25;
+
+  // What the lidar object's point covariance leaves out (lidar_point_model.h), added before
+  // the pair is fused. Not in the gate: the gate has point_definition_sigma_m for that, and a
+  // segmentation object's class is known only once the camera has paired it.
+  LidarPointModelOptions lidar_point;
 
   // Time offset: the latest stereo frame is predicted to the lidar stamp with its speeds. A
   // frame further than this from the lidar stamp (either way) is not used: at 20 Hz the latest

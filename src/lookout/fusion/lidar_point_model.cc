@@ -1,0 +1,126 @@
+#include "lookout/fusion/lidar_point_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "lookout/core/pose2.h"
+
+namespace lookout::fusion {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+
+// A beam along the side would make its spacing on the side infinite: a cosine of incidence
+// below this counts as this (as the segmentation's own spacing does).
+constexpr double kMinCosineOfIncidence = 0.2;
+
+void RequirePointModel(bool ok, const char* field, const char* what) {
+  if (!ok) {
+    throw std::invalid_argument(std::string("LidarPointModelOptions.") + field + ": " + what);
+  }
+}
+
+}  // namespace
+
+void LidarPointModelOptions::Validate() const {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  RequirePointModel(positive(beam_spacing_rad), "beam_spacing_rad", "must be finite and > 0");
+  RequirePointModel(std::isfinite(grid_cell_size_m) && grid_cell_size_m >= 0.0,
+                    "grid_cell_size_m", "must be finite and >= 0");
+  RequirePointModel(positive(pedestrian_radius_m), "pedestrian_radius_m",
+                    "must be finite and > 0");
+  RequirePointModel(positive(cyclist_length_m) && positive(cyclist_width_m), "cyclist_*_m",
+                    "must be finite and > 0");
+  RequirePointModel(positive(car_length_m) && positive(car_width_m), "car_*_m",
+                    "must be finite and > 0");
+  RequirePointModel(positive(truck_length_m) && positive(truck_width_m), "truck_*_m",
+                    "must be finite and > 0");
+}
+
+double EndResolutionVariance(double beam_spacing_m, double cell_size_m) {
+  const double one_end = (beam_spacing_m * beam_spacing_m + cell_size_m * cell_size_m) / 12.0;
+  return 2.0 * one_end / 4.0;
+}
+
+double HiddenExtentVariance(double visible_m, double side_m) {
+  const double hidden = std::max(0.0, side_m - visible_m);
+  return hidden * hidden / 12.0;
+}
+
+double BoxHiddenExtentVariance(double visible_m, double length_m, double width_m) {
+  const double longer = std::max(length_m, width_m);
+  const double shorter = std::min(length_m, width_m);
+  if (visible_m > shorter) return HiddenExtentVariance(visible_m, longer);
+  const double p_length = 1.0 - (2.0 / kPi) * std::atan(shorter / longer);
+  return p_length * HiddenExtentVariance(visible_m, longer) +
+         (1.0 - p_length) * HiddenExtentVariance(visible_m, shorter);
+}
+
+Matrix2d RoundBodyCovariance(double radius_m, const Vector2d& ray) {
+  const Vector2d along = ray.normalized();
+  const Vector2d across(-along.y(), along.x());
+  const double r2 = radius_m * radius_m;
+  const double var_along = r2 * (kPi * kPi / 16.0 - std::sqrt(2.0) + 0.5 + 1.0 / kPi);
+  const double var_across = r2 * (0.5 - 1.0 / kPi);
+  return var_along * along * along.transpose() + var_across * across * across.transpose();
+}
+
+ObjectClass MostLikelyLidarClass(const LidarObject& object) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < object.class_pmf.size(); ++i) {
+    if (object.class_pmf[i] > object.class_pmf[best]) best = i;
+  }
+  return kAllObjectClasses[best];
+}
+
+Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_class,
+                              const Vector2d& lidar_origin_m,
+                              const LidarPointModelOptions& options) {
+  Matrix2d covariance = object.point_covariance;
+  if (!options.enabled) return covariance;
+  const Vector2d ray = object.point_m - lidar_origin_m;
+  const double range = ray.norm();
+  if (!(range > 0.0) || !std::isfinite(range)) return covariance;
+  if (object_class == ObjectClass::kPedestrian) {
+    covariance += RoundBodyCovariance(options.pedestrian_radius_m, ray);
+  }
+  // The segmentation bounds each end of its segment from the scan itself (the next beam past
+  // it, or the shadow hiding it); the grid's ends are cells at its extreme bearings, bounded
+  // by nothing the grid reports.
+  if (object.cell_count == 0) return covariance;
+  const Vector2d segment = object.front_end_m - object.front_start_m;
+  const double visible = segment.norm();
+  const Vector2d beam = ray / range;
+  // The side's direction; a segment of one cell runs across the ray.
+  const Vector2d u = visible > 1e-9 ? Vector2d(segment / visible) : Vector2d(-beam.y(), beam.x());
+  const double cos_incidence = std::abs(beam.x() * u.y() - beam.y() * u.x());
+  const double spacing =
+      range * options.beam_spacing_rad / std::max(cos_incidence, kMinCosineOfIncidence);
+  double var_along = EndResolutionVariance(spacing, options.grid_cell_size_m);
+  switch (object_class) {
+    case ObjectClass::kPedestrian:
+      var_along += HiddenExtentVariance(visible, 2.0 * options.pedestrian_radius_m);
+      break;
+    case ObjectClass::kCyclist:
+      var_along +=
+          BoxHiddenExtentVariance(visible, options.cyclist_length_m, options.cyclist_width_m);
+      break;
+    case ObjectClass::kCar:
+      var_along += BoxHiddenExtentVariance(visible, options.car_length_m, options.car_width_m);
+      break;
+    case ObjectClass::kTruck:
+      var_along +=
+          BoxHiddenExtentVariance(visible, options.truck_length_m, options.truck_width_m);
+      break;
+    case ObjectClass::kUnknown:
+    case ObjectClass::kPole:
+      break;
+  }
+  covariance += var_along * u * u.transpose();
+  return covariance;
+}
+
+}  // namespace lookout::fusion

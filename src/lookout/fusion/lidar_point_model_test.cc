@@ -1,0 +1,215 @@
+#include "lookout/fusion/lidar_point_model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "lookout/core/pose2.h"
+#include "lookout/stereo/oriented_box.h"
+
+namespace lookout::fusion {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+
+constexpr unsigned kSeed = 20261202;
+
+// Each end uniform over a beam spacing past its return and, independently, over its cell:
+// the middle's variance by Monte Carlo against the closed form.
+TEST(LidarPointModelTest, EndResolutionMatchesMonteCarlo) {
+  std::mt19937_64 rng(kSeed);
+  const double spacing = 0.12, cell = 0.15;
+  std::uniform_real_distribution<double> beam(0.0, spacing), in_cell(-0.5 * cell, 0.5 * cell);
+  const int n = 200'000;
+  double sum = 0.0, sum2 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    // The start end moves outward to -x, the far end to +x.
+    const double start = -beam(rng) + in_cell(rng);
+    const double end = beam(rng) + in_cell(rng);
+    const double middle = 0.5 * (start + end);
+    sum += middle;
+    sum2 += middle * middle;
+  }
+  const double mean = sum / n;
+  const double variance = sum2 / n - mean * mean;
+  EXPECT_NEAR(variance, EndResolutionVariance(spacing, cell), 0.02 * variance) << "seed " << kSeed;
+  EXPECT_DOUBLE_EQ(EndResolutionVariance(0.0, 0.0), 0.0);
+}
+
+// A window of `visible` placed uniformly on a side: the offset of its middle from the side's.
+TEST(LidarPointModelTest, HiddenExtentMatchesMonteCarlo) {
+  std::mt19937_64 rng(kSeed);
+  const double side = 4.5, visible = 1.3;
+  std::uniform_real_distribution<double> start(0.0, side - visible);
+  const int n = 200'000;
+  double sum2 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double offset = start(rng) + 0.5 * visible - 0.5 * side;
+    sum2 += offset * offset;
+  }
+  EXPECT_NEAR(sum2 / n, HiddenExtentVariance(visible, side), 0.02 * sum2 / n) << "seed " << kSeed;
+  EXPECT_DOUBLE_EQ(HiddenExtentVariance(4.5, 4.5), 0.0);
+  EXPECT_DOUBLE_EQ(HiddenExtentVariance(5.0, 4.5), 0.0);  // more seen than the side: nothing hid
+}
+
+// A car seen over less than its width from a uniformly random direction: which side faces the
+// viewer is stereo::FrontSegmentFacing's (the truth's and the camera's rule), the window on it
+// uniform. The mixture's chance of the length side is checked through the variance.
+TEST(LidarPointModelTest, BoxHiddenExtentFollowsTheFacingSideRule) {
+  std::mt19937_64 rng(kSeed);
+  const double length = 4.5, width = 1.8, visible = 1.0;
+  const stereo::OrientedBox box{Vector2d::Zero(), 0.0, length, width};
+  std::uniform_real_distribution<double> direction(-kPi, kPi), unit(0.0, 1.0);
+  const int n = 200'000;
+  double sum2 = 0.0;
+  int length_sides = 0;
+  for (int k = 0; k < n; ++k) {
+    const double a = direction(rng);
+    const auto front = stereo::FrontSegmentFacing(box, 30.0 * Vector2d(std::cos(a), std::sin(a)));
+    ASSERT_TRUE(front.has_value());
+    const double side = (front->end_m - front->start_m).norm();
+    if (side > 0.5 * (length + width)) ++length_sides;
+    const double offset = unit(rng) * (side - visible) + 0.5 * visible - 0.5 * side;
+    sum2 += offset * offset;
+  }
+  const double p_length = 1.0 - (2.0 / kPi) * std::atan(width / length);
+  EXPECT_NEAR(static_cast<double>(length_sides) / n, p_length, 0.005) << "seed " << kSeed;
+  const double expected = BoxHiddenExtentVariance(visible, length, width);
+  EXPECT_NEAR(sum2 / n, expected, 0.02 * expected) << "seed " << kSeed;
+  // Seen over more than its width, it can only be the length side.
+  EXPECT_DOUBLE_EQ(BoxHiddenExtentVariance(2.5, length, width),
+                   HiddenExtentVariance(2.5, length));
+}
+
+// A pedestrian, a circle of radius r, 12 m from the lidar, seen by beams 0.05 deg apart (far
+// enough and fine enough for the model's "seen from afar"): the lidar's point is the middle of
+// its returns across the ray at their mean depth (what a straight-line fit of the arc gives);
+// the true point is the middle of the facing side of the 2r square along a uniformly random
+// heading (eval::TrueFrontPoints). Their second moments in ray axes against the model's.
+TEST(LidarPointModelTest, RoundBodyMatchesBeamsOnACircle) {
+  const double r = 0.3;
+  const Vector2d lidar(2.2, 0.0);
+  const Vector2d centre = lidar + 12.0 * Vector2d(std::cos(0.4), std::sin(0.4));
+  const Vector2d to_centre = centre - lidar;
+  const double distance = to_centre.norm();
+  const Vector2d along = to_centre / distance;
+  const Vector2d across(-along.y(), along.x());
+  // The returns: beams through the circle, each at its near intersection.
+  const double dphi = 0.05 * kPi / 180.0;
+  const double half_angle = std::asin(r / distance);
+  Vector2d sum = Vector2d::Zero();
+  int hits = 0;
+  double first_across = 0.0, last_across = 0.0;
+  for (double b = -half_angle; b <= half_angle; b += dphi) {
+    const Vector2d ray = std::cos(b) * along + std::sin(b) * across;
+    const double t_mid = ray.dot(to_centre);
+    const double h2 = r * r - (distance * distance - t_mid * t_mid);
+    if (h2 < 0.0) continue;
+    const Vector2d hit = lidar + (t_mid - std::sqrt(h2)) * ray;
+    if (hits == 0) first_across = (hit - centre).dot(across);
+    last_across = (hit - centre).dot(across);
+    sum += hit;
+    ++hits;
+  }
+  ASSERT_GT(hits, 50);  // 57 beams over the 0.6 m body
+  const Vector2d mean = sum / hits;
+  const Vector2d lidar_point =
+      centre + (mean - centre).dot(along) * along + 0.5 * (first_across + last_across) * across;
+
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> heading(-kPi, kPi);
+  const int n = 200'000;
+  double s_along = 0.0, s_across = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const stereo::OrientedBox square{centre, heading(rng), 2.0 * r, 2.0 * r};
+    const auto front = stereo::FrontSegmentFacing(square, lidar);
+    ASSERT_TRUE(front.has_value());
+    const Vector2d e = lidar_point - front->midpoint_m;
+    s_along += e.dot(along) * e.dot(along);
+    s_across += e.dot(across) * e.dot(across);
+  }
+  const Matrix2d model = RoundBodyCovariance(r, to_centre);
+  const double model_along = along.dot(model * along);
+  const double model_across = across.dot(model * across);
+  EXPECT_NEAR(s_along / n, model_along, 0.05 * model_along) << "seed " << kSeed;
+  EXPECT_NEAR(s_across / n, model_across, 0.02 * model_across) << "seed " << kSeed;
+  EXPECT_NEAR(along.dot(model * across), 0.0, 1e-12);
+  // The figures the docs give: across, 0.13 m for r = 0.3 m.
+  EXPECT_NEAR(std::sqrt(model_across), 0.128, 0.001);
+}
+
+LidarObject SegmentObject(const Vector2d& point, const Vector2d& half_side) {
+  LidarObject o;
+  o.point_m = point;
+  o.front_start_m = point - half_side;
+  o.front_end_m = point + half_side;
+  o.point_covariance = Vector2d(0.0004, 0.0009).asDiagonal();
+  return o;
+}
+
+// Which terms reach which object: the round body any pedestrian's, the ends and the hidden
+// extent a grid object's only (the segmentation bounds its ends from the scan), nothing an
+// unknown segmentation object's or any object's with the model off.
+TEST(LidarPointModelTest, TermsByClassAndSource) {
+  LidarPointModelOptions options;
+  options.enabled = true;
+  const Vector2d lidar(2.2, 0.0);
+  const Vector2d point(22.2, 0.0);  // 20 m straight ahead: along the ray is x
+  const LidarObject segment = SegmentObject(point, Vector2d(0.0, 0.25));
+  EXPECT_EQ(LidarPointCovariance(segment, ObjectClass::kUnknown, lidar, options),
+            segment.point_covariance);
+  EXPECT_EQ(LidarPointCovariance(segment, ObjectClass::kCar, lidar, options),
+            segment.point_covariance);
+  const Matrix2d pedestrian =
+      LidarPointCovariance(segment, ObjectClass::kPedestrian, lidar, options);
+  EXPECT_LT((pedestrian - segment.point_covariance -
+             RoundBodyCovariance(options.pedestrian_radius_m, point - lidar))
+                .norm(),
+            1e-15);
+  const LidarPointModelOptions off;  // the default
+  ASSERT_FALSE(off.enabled);
+  EXPECT_EQ(LidarPointCovariance(segment, ObjectClass::kPedestrian, lidar, off),
+            segment.point_covariance);
+
+  // A grid car seen over 1 m across the ray at 20 m: along the side (y) the ends (beam spacing
+  // 8.7 cm, cell 0.15 m) and the hidden part of a width or length side; across it, nothing.
+  LidarObject grid = SegmentObject(point, Vector2d(0.0, 0.5));
+  grid.cell_count = 12;
+  const Matrix2d car = LidarPointCovariance(grid, ObjectClass::kCar, lidar, options);
+  const double spacing = 20.0 * options.beam_spacing_rad;
+  const double expected_y = EndResolutionVariance(spacing, options.grid_cell_size_m) +
+                            BoxHiddenExtentVariance(1.0, 4.5, 1.8);
+  EXPECT_NEAR(car(1, 1) - grid.point_covariance(1, 1), expected_y, 1e-12);
+  EXPECT_NEAR(car(0, 0), grid.point_covariance(0, 0), 1e-15);
+  EXPECT_NEAR(car(0, 1), 0.0, 1e-15);
+  // The same grid object of unknown class: the ends only.
+  const Matrix2d unknown = LidarPointCovariance(grid, ObjectClass::kUnknown, lidar, options);
+  EXPECT_NEAR(unknown(1, 1) - grid.point_covariance(1, 1),
+              EndResolutionVariance(spacing, options.grid_cell_size_m), 1e-12);
+}
+
+TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
+  LidarObject o;
+  o.class_pmf = {0.2, 0.5, 0.1, 0.2, 0.0, 0.0};
+  EXPECT_EQ(MostLikelyLidarClass(o), ObjectClass::kPedestrian);
+  o.class_pmf = {0.4, 0.1, 0.1, 0.4, 0.0, 0.0};
+  EXPECT_EQ(MostLikelyLidarClass(o), ObjectClass::kUnknown);  // ties: the first
+}
+
+TEST(LidarPointModelTest, ValidateNamesTheField) {
+  LidarPointModelOptions options;
+  options.pedestrian_radius_m = 0.0;
+  try {
+    options.Validate();
+    FAIL() << "accepted a zero radius";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pedestrian_radius_m"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lookout::fusion
