@@ -105,6 +105,7 @@ struct PipelineChoices {
   std::string tracker = "mht";
   std::string risk_shape = "boxes";
   std::string pedestrian_model = "constant-velocity";
+  std::string turn_hypotheses = "on";
 
   PipelineOptions Options() const {
     PipelineOptions o;
@@ -117,6 +118,7 @@ struct PipelineChoices {
     o.tracking_options.tracker = *ParseTrackerKind(tracker);
     o.risk_options.risk.shape = *risk::ParseCollisionShape(risk_shape);
     o.risk_options.risk.pedestrian_model = *risk::ParsePedestrianModel(pedestrian_model);
+    o.risk_options.risk.turn_hypotheses = turn_hypotheses == "on";
     return o;
   }
 };
@@ -151,6 +153,11 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
                    "Pedestrian prediction: constant-velocity (with a sampled spread) or "
                    "growing-circle (the paper's)")
       ->check(CLI::IsMember({"constant-velocity", "growing-circle"}));
+  command
+      ->add_option("--turn-hypotheses", choices.turn_hypotheses,
+                   "Vehicles approaching a junction of the map also predicted turning onto the "
+                   "crossing road: on or off (straight on only, the paper's)")
+      ->check(CLI::IsMember({"on", "off"}));
 }
 
 int Run(const std::string& scenario_path, std::string out_dir, int threads,

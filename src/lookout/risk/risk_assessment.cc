@@ -87,6 +87,61 @@ bool Valid(const ObjectInput& object) {
   return SymmetricPsd(object.position_covariance) && SymmetricPsd(object.velocity_covariance);
 }
 
+// A turn that the map and the vehicle's speed allow, its footprints with and without the
+// covariance margin, and the weights of the turn and of straight on.
+struct ManoeuvreTrack {
+  Manoeuvre manoeuvre = Manoeuvre::kStraight;
+  double weight = 0.0;
+  FootprintTrack track, bare;
+};
+
+struct Turns {
+  double straight_weight = 1.0;
+  std::vector<ManoeuvreTrack> plausible;
+};
+
+// The turns of a car or truck approaching a junction of `roads` whose weight reaches
+// min_manoeuvre_weight; none for other classes, without a heading or a map. Pure.
+Turns PredictTurns(const ObjectInput& object, const Carriageways& roads,
+                   const RiskOptions& options) {
+  const bool turns = object.object_class == ObjectClass::kCar ||
+                     object.object_class == ObjectClass::kTruck;
+  const double speed = object.velocity_mps.norm();
+  if (!options.turn_hypotheses || !turns || roads.empty() ||
+      (!object.yaw_rad && speed < options.min_heading_speed_mps)) {
+    return {};
+  }
+  const double yaw = object.yaw_rad ? *object.yaw_rad
+                                    : std::atan2(object.velocity_mps.y(), object.velocity_mps.x());
+  const Extent box = BoxOf(object.object_class, options);
+  const TurnLimits limits{options.max_turn_lateral_acceleration_mps2,
+                          options.turn_heading_tolerance_rad, 0.5 * box.width_m};
+  const std::optional<TurnPath> left =
+      PlanTurn(roads, object.position_m, yaw, speed, Manoeuvre::kLeftTurn, limits);
+  const std::optional<TurnPath> right =
+      PlanTurn(roads, object.position_m, yaw, speed, Manoeuvre::kRightTurn, limits);
+  const ManoeuvreWeights w = WeighManoeuvres(options.turn_left_prior, options.turn_right_prior,
+                                             left.has_value(), right.has_value());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(object.position_covariance);
+  const double margin =
+      options.covariance_sigmas * std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
+  Turns out;
+  out.straight_weight = w.straight;
+  const auto add = [&](Manoeuvre m, const std::optional<TurnPath>& path, double weight) {
+    if (!path || weight < options.min_manoeuvre_weight) return;
+    std::vector<PoseAt> poses;
+    for (const PathPose& p : AlongTurn(object.position_m, yaw, speed, *path, options.horizon_s,
+                                       options.step_s)) {
+      poses.push_back({p.position_m, p.yaw_rad});
+    }
+    out.plausible.push_back({m, weight, FootprintsAlong(poses, box, true, 0.0, margin, options),
+                             FootprintsAlong(poses, box, true, 0.0, 0.0, options)});
+  };
+  add(Manoeuvre::kLeftTurn, left, w.left);
+  add(Manoeuvre::kRightTurn, right, w.right);
+  return out;
+}
+
 }  // namespace
 
 double RiskIndicator(std::optional<double> ttc_s, const RiskOptions& options) {
@@ -175,27 +230,42 @@ RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& o
       ++out.dropped;
       continue;
     }
-    ObjectRisk r;
-    r.id = object.id;
-    const FootprintTrack track = PredictObject(object, options);
-    if (const auto c = FirstCollision(ego_track, track, options.step_s)) r.ttc_s = c->ttc_s;
-    r.risk = RiskIndicator(r.ttc_s, options);
-    r.pet_s = PostEncroachmentTime(ego_track, track, options.step_s);
-    if (out.sampled) {
-      SamplingInput sampling{object.position_covariance, object.velocity_covariance};
-      const bool walks = !MovesLikeAVehicle(object.object_class) &&
-                         options.pedestrian_model == PedestrianModel::kConstantVelocity;
-      if (walks) {
-        const double s = options.pedestrian_intent_sigma_mps;
-        sampling.velocity_covariance += s * s * Eigen::Matrix2d::Identity();
+    SamplingInput sampling{object.position_covariance, object.velocity_covariance};
+    const bool walks = !MovesLikeAVehicle(object.object_class) &&
+                       options.pedestrian_model == PedestrianModel::kConstantVelocity;
+    if (walks) {
+      const double s = options.pedestrian_intent_sigma_mps;
+      sampling.velocity_covariance += s * s * Eigen::Matrix2d::Identity();
+    }
+    const bool at_kerb = object.object_class == ObjectClass::kPedestrian &&
+                         !ego.carriageways_m.empty() &&
+                         !OnCarriageway(ego.carriageways_m, object.position_m);
+    // One manoeuvre's figures, from its footprints with and without the covariance margin.
+    const auto assess = [&](const FootprintTrack& track, const FootprintTrack& bare) {
+      ObjectRisk r;
+      r.id = object.id;
+      if (const auto c = FirstCollision(ego_track, track, options.step_s)) r.ttc_s = c->ttc_s;
+      r.risk = RiskIndicator(r.ttc_s, options);
+      r.pet_s = PostEncroachmentTime(ego_track, track, options.step_s);
+      if (out.sampled) {
+        r.collision_probability =
+            CollisionProbability(ego_track, bare, options.step_s, sampling, normals);
+        if (at_kerb) r.collision_probability *= options.kerb_step_off_probability;
       }
-      r.collision_probability = CollisionProbability(
-          ego_track, PredictObject(object, options, /*covariance_margin=*/false), options.step_s,
-          sampling, normals);
-      if (object.object_class == ObjectClass::kPedestrian && !ego.carriageways_m.empty() &&
-          !OnCarriageway(ego.carriageways_m, object.position_m)) {
-        r.collision_probability *= options.kerb_step_off_probability;
-      }
+      return r;
+    };
+    ObjectRisk r = assess(PredictObject(object, options),
+                          PredictObject(object, options, /*covariance_margin=*/false));
+    const Turns turns = PredictTurns(object, ego.carriageways_m, options);
+    r.manoeuvre_weight = turns.straight_weight;
+    const auto danger = [&](const ObjectRisk& x) {
+      return out.sampled ? x.risk * x.collision_probability : x.risk;
+    };
+    for (const ManoeuvreTrack& m : turns.plausible) {
+      ObjectRisk turned = assess(m.track, m.bare);
+      turned.manoeuvre = m.manoeuvre;
+      turned.manoeuvre_weight = m.weight;
+      if (danger(turned) > danger(r)) r = turned;
     }
     out.objects.push_back(r);
     const std::size_t i = out.objects.size() - 1;

@@ -18,7 +18,9 @@
 //      (pedestrian_intent_sigma_mps): where the paper's growing circle says "anywhere within
 //      speed x t", the samples say how likely each place is. A pedestrian off the carriageways
 //      of the ego's map may wait at the kerb: its probability is weighted by the chance that it
-//      steps off (carriageway.h).
+//      steps off (carriageway.h). A car or truck approaching a junction of the ego's map is
+//      also predicted under the turns its speed and the corner allow (turn_hypotheses.h),
+//      weighted by a prior; its figures are those of the most dangerous plausible manoeuvre.
 //
 // The risk indicator (the paper's Fig. 7, whose curve the text does not state; Lookout's
 // reading): 1 when the TTC is at most the total reaction time (2 s: nothing the driver starts
@@ -34,6 +36,7 @@
 #include "lookout/risk/carriageway.h"
 #include "lookout/risk/collision.h"
 #include "lookout/risk/risk_options.h"
+#include "lookout/risk/turn_hypotheses.h"
 
 namespace lookout::risk {
 
@@ -66,12 +69,17 @@ struct ObjectInput {
   Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Zero();  // (m/s)^2
 };
 
+// The figures of one object's most dangerous plausible manoeuvre (the largest risk times
+// probability, or risk when unsampled, among those of weight >= min_manoeuvre_weight; straight
+// on when it ties): its collision probability is given that manoeuvre.
 struct ObjectRisk {
   std::uint32_t id = 0;
   std::optional<double> ttc_s;
   double risk = 0.0;
   double collision_probability = 0.0;  // 0 when RiskOptions::collision_samples is 0
   std::optional<double> pet_s;         // post-encroachment time
+  Manoeuvre manoeuvre = Manoeuvre::kStraight;
+  double manoeuvre_weight = 1.0;       // its prior share among the possible manoeuvres
 };
 
 struct RiskAssessment {

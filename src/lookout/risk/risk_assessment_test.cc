@@ -282,5 +282,47 @@ TEST(RiskAssessmentTest, AWalkerOnTheSidewalkMayWaitAtTheKerb) {
   EXPECT_THROW(bad.Validate(), InputError);
 }
 
+// Left turn across the path: the ego drives east in its lane (y = -1.75), an oncoming car
+// (west at 8 m/s in y = 1.75, 20 m from the junction) passes it in the next lane when it goes
+// straight on, and crosses its path in 1.5-2.4 s if it turns left (the arc of 12.8 m,
+// turn_hypotheses_test.cc, reaches the middle of the ego's lane at x = 2.3 after 2.33 s, when
+// the ego's centre is at x = 1). With the junction's map the left turn is a hypothesis of weight 0.5 (the
+// right turn is too tight at 8 m/s; straight on and left share the third it leaves), and the
+// most dangerous: its figures are the object's. Without the map, or at 20 m/s (no turn), only
+// straight on: no collision.
+TEST(RiskAssessmentTest, AnOncomingCarMayTurnAcrossThePath) {
+  const RiskOptions o;
+  EgoInput ego;
+  ego.position_m = {-22.3, -1.75};
+  ego.speed_mps = 10.0;
+  ObjectInput car = Object(ObjectClass::kCar, {20.0, 1.75}, {-8.0, 0.0});
+  const RiskAssessment straight = AssessRisk(ego, {car}, o);
+  EXPECT_FALSE(straight.objects[0].ttc_s.has_value());
+
+  ego.carriageways_m = {Footprint::Box({0.0, 0.0}, 0.0, 120.0, 7.0),
+                        Footprint::Box({0.0, 0.0}, 0.5 * std::numbers::pi, 120.0, 7.0)};
+  const ObjectRisk turning = AssessRisk(ego, {car}, o).objects.at(0);
+  EXPECT_EQ(turning.manoeuvre, Manoeuvre::kLeftTurn);
+  EXPECT_NEAR(turning.manoeuvre_weight, 0.5, 1e-12);
+  ASSERT_TRUE(turning.ttc_s.has_value());
+  EXPECT_GT(*turning.ttc_s, 1.5);
+  EXPECT_LT(*turning.ttc_s, 2.4);
+  EXPECT_EQ(turning.collision_probability, 1.0) << "no covariance: every sample hits";
+
+  RiskOptions off = o;
+  off.turn_hypotheses = false;
+  EXPECT_FALSE(AssessRisk(ego, {car}, off).objects[0].ttc_s.has_value());
+
+  ObjectInput fast = Object(ObjectClass::kCar, {40.0, 1.75}, {-20.0, 0.0});
+  const ObjectRisk passing = AssessRisk(ego, {fast}, o).objects.at(0);
+  EXPECT_EQ(passing.manoeuvre, Manoeuvre::kStraight);
+  EXPECT_EQ(passing.manoeuvre_weight, 1.0);
+  EXPECT_FALSE(passing.ttc_s.has_value());
+
+  RiskOptions bad;
+  bad.turn_right_prior = 0.9;  // with the left's third, over 1
+  EXPECT_THROW(bad.Validate(), InputError);
+}
+
 }  // namespace
 }  // namespace lookout::risk

@@ -1,6 +1,7 @@
 #include "lookout/risk/risk_options.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "lookout/core/input_error.h"
 
@@ -69,6 +70,17 @@ void RiskOptions::Validate(const std::string& source) const {
           "must be >= 0");
   Require(kerb_step_off_probability >= 0.0 && kerb_step_off_probability <= 1.0, source,
           "kerb_step_off_probability", "must be in [0, 1]");
+  Require(turn_left_prior >= 0.0 && turn_left_prior <= 1.0, source, "turn_left_prior",
+          "must be in [0, 1]");
+  Require(turn_right_prior >= 0.0 && turn_right_prior <= 1.0 - turn_left_prior, source,
+          "turn_right_prior", "must be in [0, 1 - turn_left_prior]");
+  Require(min_manoeuvre_weight > 0.0 && min_manoeuvre_weight <= 1.0, source,
+          "min_manoeuvre_weight", "must be in (0, 1]");
+  Require(Positive(max_turn_lateral_acceleration_mps2), source,
+          "max_turn_lateral_acceleration_mps2", "must be > 0");
+  Require(turn_heading_tolerance_rad > 0.0 &&
+              turn_heading_tolerance_rad < 0.25 * std::numbers::pi,
+          source, "turn_heading_tolerance_rad", "must be in (0, pi/4)");
   Require(collision_samples >= 0 && collision_samples <= 1000000, source, "collision_samples",
           "must be in [0, 10^6]");
   Require(Positive(reaction_time_s) && reaction_time_s < horizon_s, source, "reaction_time_s",

@@ -78,6 +78,24 @@ struct RiskOptions {
   // sampled crossing future hits. 1 leaves the walker to its state, as the paper does.
   double kerb_step_off_probability = 0.5;
 
+  // Manoeuvre hypotheses at junctions (turn_hypotheses.h): a car or truck on a carriageway of
+  // the ego's map that another crosses ahead may turn onto it. Each turn that its speed and the
+  // corner allow gets its prior, straight on the rest (turn_left_prior and turn_right_prior:
+  // a third each, three exits none favoured: nothing in a track says which a driver takes),
+  // renormalised over the possible ones; the risk is that of the most dangerous manoeuvre
+  // whose weight reaches min_manoeuvre_weight (risk_assessment.h: a turn across the ego's path
+  // gives no time to react once it begins). false: straight on only, as the paper.
+  bool turn_hypotheses = true;
+  double turn_left_prior = 1.0 / 3.0;
+  double turn_right_prior = 1.0 / 3.0;
+  double min_manoeuvre_weight = 0.25;
+  // The lateral acceleration a driver takes a junction's corner at, at most (0.5 g): it picks
+  // the turn's radius (v^2 / a, within what the corner allows) and rules out a turn too fast
+  // for the corner.
+  double max_turn_lateral_acceleration_mps2 = 5.0;
+  // A vehicle drives along a road when its heading is within this of the road's axis.
+  double turn_heading_tolerance_rad = 0.35;
+
   // Collision probability (risk_indicators.h): samples per object, 0 to skip, and the seed of
   // the draws (one set per step, shared by the objects: the same tracks give the same
   // probabilities, whatever their order).
