@@ -49,8 +49,8 @@ TEST(GridStageTest, SensorPoseFollowsTheEgoInTheOdometryFrame) {
   // The lidar's estimated pose at the last scan (0.96 s) is the true one within dead-reckoning
   // drift.
   const Pose2 world_from_odom = simulator.ego_trajectory().At(0.0).pose;
-  const Pose2 truth =
-      simulator.ego_trajectory().At(ToSeconds(log.lidar.back().stamp)).pose * log.lidar.back().mount;
+  const Pose2 truth = simulator.ego_trajectory().At(ToSeconds(log.lidar.back().stamp)).pose *
+                      log.lidar.back().mount;
   const Pose2 estimate = world_from_odom * *stage.last_sensor_pose();
   EXPECT_LT((truth.translation - estimate.translation).norm(), 0.05);
   EXPECT_LT(std::abs(WrapAngle(truth.yaw - estimate.yaw)), 0.01);

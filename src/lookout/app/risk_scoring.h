@@ -10,11 +10,11 @@
 // - risk.ttc_mae_s: the true TTC is the TTC "in the same sense" as the estimate: the same
 //   prediction (the same model of each class, the same footprints, the ego along the same route
 //   or from its state as the stage) run on the true states of the ego and the actors (their
-//   true headings; no covariance, so no covariance margin). Wherever an actor's true TTC is below 4 s, its track (the
-//   confirmed track nearest to it within 2 m) is compared: the mean absolute difference over
-//   those frames, risk.ttc_pairs of them; risk.ttc_missing counts the frames where the actor
-//   had no track or its track no TTC. This measures what perception and tracking cost the TTC;
-//   how far the prediction model itself is from the real future shows in the lead time.
+//   true headings; no covariance, so no covariance margin). Wherever an actor's true TTC is below
+//   4 s, its track (the confirmed track nearest to it within 2 m) is compared: the mean absolute
+//   difference over those frames, risk.ttc_pairs of them; risk.ttc_missing counts the frames where
+//   the actor had no track or its track no TTC. This measures what perception and tracking cost the
+//   TTC; how far the prediction model itself is from the real future shows in the lead time.
 // - risk.ideal_first_warning_s, risk.ideal_max_level: the warning levels (same rule, thresholds
 //   and hysteresis) on the true states' assessment: what perfect perception would give, so that
 //   the gap to the stage's own figures is what the perception chain loses.

@@ -31,7 +31,8 @@ namespace {
 std::vector<std::string> WriteSnapshot(const grid::ExtendedGrid& grid, const RunOptions& options,
                                        TimeNs stamp) {
   const eval::GridBelief b = BeliefOf(grid);
-  const std::string stem = fmt::format("{}/snapshot-{:.2f}s", options.snapshot_dir, ToSeconds(stamp));
+  const std::string stem =
+      fmt::format("{}/snapshot-{:.2f}s", options.snapshot_dir, ToSeconds(stamp));
   const std::vector<std::string> files = {stem + "-occupancy.png", stem + "-speed.png",
                                           stem + "-class.png"};
   io::WritePng(files[0], io::RenderOccupancy(b.geometry, b.occupancy));
@@ -254,7 +255,8 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
 
 }  // namespace
 
-RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline, const RunOptions& options) {
+RunResult RunScenario(const sim::Scenario& scenario, Pipeline& pipeline,
+                      const RunOptions& options) {
   // Every parallel loop of the run (simulator and stages) shares this many threads; the
   // output does not depend on the number (each loop writes distinct cells in a fixed order).
   tbb::task_arena arena(options.threads);

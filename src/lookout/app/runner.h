@@ -24,8 +24,8 @@ struct RunOptions {
   std::optional<std::string> recording_path;   // none: record nothing
   // Called after each lidar cycle with the simulated time and the scenario's duration.
   std::function<void(double t_s, double duration_s)> progress;
-  // Write PNG images of the grid (occupancy, speed map, class map) at the first lidar cycle at or after
-  // this time, into snapshot_dir.
+  // Write PNG images of the grid (occupancy, speed map, class map) at the first lidar cycle at or
+  // after this time, into snapshot_dir.
   std::optional<double> snapshot_s;
   std::string snapshot_dir = ".";
   // The speed map's brightness saturates at this speed (io::SpeedMapOptions): 20 m/s shows

@@ -19,8 +19,12 @@ namespace {
 class ProbeStage : public Stage {
  public:
   explicit ProbeStage(std::vector<std::pair<TimeNs, SensorOrder>>* seen) : seen_(seen) {}
-  void OnOdometry(const EgoOdometry& o) override { seen_->push_back({o.stamp, SensorOrder::kOdometry}); }
-  void OnStereo(const StereoFrame& f) override { seen_->push_back({f.stamp, SensorOrder::kStereo}); }
+  void OnOdometry(const EgoOdometry& o) override {
+    seen_->push_back({o.stamp, SensorOrder::kOdometry});
+  }
+  void OnStereo(const StereoFrame& f) override {
+    seen_->push_back({f.stamp, SensorOrder::kStereo});
+  }
   void OnLidar(const LidarScan& s) override { seen_->push_back({s.stamp, SensorOrder::kLidar}); }
 
  private:

@@ -273,7 +273,9 @@ TEST_P(TrackingStageTest, TracksAWalkerAndRefusesBadInputWithAWarning) {
 
 INSTANTIATE_TEST_SUITE_P(Trackers, TrackingStageTest,
                          ::testing::Values(TrackerKind::kMht, TrackerKind::kGnn),
-                         [](const auto& param_info) { return std::string(ToString(param_info.param)); });
+                         [](const auto& param_info) {
+                           return std::string(ToString(param_info.param));
+                         });
 
 TEST(TrackingStageDefaultsTest, TheMhtTracksWithTheGnnBesideIt) {
   const TrackingStage stage;

@@ -27,7 +27,8 @@ stereo::StereoPoint CrossingCar() {
   o.center_covariance = Vector2d(0.2, 0.01).asDiagonal();
   o.yaw_variance = 0.0;
   o.speed_variance = 0.25;
-  return std::get<stereo::StereoPoint>(stereo::ProjectStereoObject(o, kCameraMount, kLidarMount, {}));
+  return std::get<stereo::StereoPoint>(
+      stereo::ProjectStereoObject(o, kCameraMount, kLidarMount, {}));
 }
 
 TEST(StereoPredictionTest, ObjectMotionAndCovarianceGrowth) {

@@ -34,8 +34,8 @@ double PredictVelocity(double velocity_mps, double dt_s, const FilterOptions& op
 
 // The search window of a source with the given state (used by the fast path and the reference).
 SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
-                             double confidence, const float* class_pmf, double dt_s, double cell_size_m,
-                             const FilterOptions& options);
+                             double confidence, const float* class_pmf, double dt_s,
+                             double cell_size_m, const FilterOptions& options);
 
 // Eq. 8-9 for every active cell: the sources with their state copied, their windows, and the
 // normalised Psi in Associations::weight. Parallel over sources; deterministic.

@@ -178,9 +178,9 @@ LayerDiff Compare(const ExtendedGrid& fast, const GridLayers& reference) {
   for (std::size_t i = 0; i < o.size(); ++i) {
     if (o[i] < 0.6f) continue;
     for (const LayerId id : {ids.velocity_x_mps, ids.velocity_y_mps}) {
-      d.occupied_velocity_mps =
-          std::max(d.occupied_velocity_mps, std::abs(static_cast<double>(fast.layers().Values(id)[i]) -
-                                                     static_cast<double>(reference.Values(id)[i])));
+      d.occupied_velocity_mps = std::max(d.occupied_velocity_mps,
+                                         std::abs(static_cast<double>(fast.layers().Values(id)[i]) -
+                                                  static_cast<double>(reference.Values(id)[i])));
     }
   }
   return d;
@@ -294,7 +294,8 @@ TEST(ExtendedGridReferenceTest, FactorisedRigidityStaysCloseToLiteral) {
       worst.occupied_velocity_mps = std::max(worst.occupied_velocity_mps, d.occupied_velocity_mps);
       worst.rigidity = std::max(worst.rigidity, d.rigidity);
       EXPECT_LT(d.occupancy, tracked ? kTrackedOccupancyBound : kMixedOccupancyBound);
-      EXPECT_LT(d.occupied_velocity_mps, tracked ? kTrackedVelocityBoundMps : kMixedVelocityBoundMps);
+      EXPECT_LT(d.occupied_velocity_mps,
+                tracked ? kTrackedVelocityBoundMps : kMixedVelocityBoundMps);
     }
     std::printf("factorised vs literal (%s windows), worst over seeds 1-8: occupancy %.3f, "
                 "velocity in occupied cells %.3f m/s, rigidity links %.3f\n",
@@ -331,8 +332,8 @@ TEST(ExtendedGridTest, IdenticalOutputForOneAndTwoThreads) {
       for (int k = 0; k < 8; ++k) {
         const double t = k * kDtS;
         grid.Update(Measure(grid.geometry(),
-                            {BoxM{1.0 + 3.0 * t, 2.0, 0.9, 0.6}, BoxM{12.0 - 10.0 * t, 6.0, 2.4, 1.2},
-                             BoxM{5.0, 0.3, 6.0, 0.3}}),
+                            {BoxM{1.0 + 3.0 * t, 2.0, 0.9, 0.6},
+                             BoxM{12.0 - 10.0 * t, 6.0, 2.4, 1.2}, BoxM{5.0, 0.3, 6.0, 0.3}}),
                     kDtS);
       }
       for (int l = 0; l < grid.layers().LayerCount(); ++l) {
@@ -494,13 +495,15 @@ TEST(ExtendedGridTest, TwoCellsCannotMergeIntoOne) {
     GridLayers& l = grid.mutable_layers();
     const auto& g = grid.geometry();
     const std::size_t a = g.StorageIndexOfLocal({10, 12}), b = g.StorageIndexOfLocal({14, 12});
-    for (const auto& [cell, vx] : {std::pair{a, 2 * kCellM / kDtS}, std::pair{b, -2 * kCellM / kDtS}}) {
+    for (const auto& [cell, vx] :
+         {std::pair{a, 2 * kCellM / kDtS}, std::pair{b, -2 * kCellM / kDtS}}) {
       l.Values(grid.ids().occupancy)[cell] = 0.95f;
       l.Values(grid.ids().seen)[cell] = 1.0f;
       l.Values(grid.ids().velocity_x_mps)[cell] = static_cast<float>(vx);
       l.Values(grid.ids().velocity_confidence)[cell] = 1.0f;
       l.Values(grid.ids().class_pmf[0])[cell] = 0.96f;  // static: narrowest sigma
-      for (std::size_t c = 1; c < kGridClassCount; ++c) l.Values(grid.ids().class_pmf[c])[cell] = 0.01f;
+      for (std::size_t c = 1; c < kGridClassCount; ++c)
+        l.Values(grid.ids().class_pmf[c])[cell] = 0.01f;
     }
     grid.Update(Measure(g, {}, /*observed=*/false), kDtS);
     return static_cast<double>(l.Values(grid.ids().occupancy)[g.StorageIndexOfLocal({12, 12})]);

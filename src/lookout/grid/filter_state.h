@@ -226,8 +226,9 @@ struct UpdateCell {
 };
 // Targets first (in TargetIndex order), then the other sources, then the other evidence cells.
 // Needs workspace.source_of_cell mapped (MapSources).
-std::vector<UpdateCell> BuildUpdateList(const TargetIndex& targets, const Associations& associations,
-                                        const MeasurementGrid& z, FilterWorkspace& workspace);
+std::vector<UpdateCell> BuildUpdateList(const TargetIndex& targets,
+                                        const Associations& associations, const MeasurementGrid& z,
+                                        FilterWorkspace& workspace);
 
 // The weighted mean over the contributions w_ji = P(j -> i) O(j) that one target gathers, of a
 // per-source quantity: the carrying rule of every per-cell attribute (velocity, class, links).

@@ -52,7 +52,8 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
     if (!returned(beam - 1) || !returned(beam + 1)) return no_return_length_m;
     const auto r_before = static_cast<double>(scan.ranges_m[beam - 1]);
     const auto r_after = static_cast<double>(scan.ranges_m[beam + 1]);
-    const double lateral_gap_m = std::max(r_before, r_after) * 2.0 * std::abs(scan.angle_increment_rad);
+    const double lateral_gap_m =
+        std::max(r_before, r_after) * 2.0 * std::abs(scan.angle_increment_rad);
     if (lateral_gap_m >= surface_gap_m || std::abs(r_before - r_after) >= surface_gap_m) {
       return no_return_length_m;
     }
@@ -105,8 +106,9 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
   if (surface_gap_m > 0.0) {
     auto impact = [&](std::size_t beam) {
       const double angle_rad = sensor_pose.yaw + scan.BeamAngle(beam);
-      return Eigen::Vector2d(origin_m + static_cast<double>(scan.ranges_m[beam]) *
-                                            Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));
+      return Eigen::Vector2d(origin_m +
+                             static_cast<double>(scan.ranges_m[beam]) *
+                                 Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));
     };
     for (std::size_t beam = 0; beam + 1 < scan.ranges_m.size(); ++beam) {
       if (!returned(beam) || !returned(beam + 1)) continue;

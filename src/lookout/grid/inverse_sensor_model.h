@@ -25,14 +25,15 @@
 // the same space in the same instant, and fusing them would make the cells nearest the sensor
 // near-certain within one scan.
 //
-// Free space from beams only, no filling between them. Adjacent beams diverge by r * angle_increment; beyond
-// r = cell_size / angle_increment (34 m at 0.25 deg and 0.15 m) they are farther apart than a
-// cell, so some cells between beams get no evidence (0.5) and a far surface's hit cells would
-// have gaps, which the surface segments close (up to surface_gap_m). With the default 60 m window centred on the ego, only its corners are that far from
-// the lidar. Consequence: there the grid learns free space more slowly (a 0.5 cell keeps its
-// prediction, it is never wrongly cleared) and a far surface is sampled sparsely in one scan,
-// filled in across scans as the ego moves. Filling the wedge between two beams instead would
-// assert free space that no beam observed: a pole narrower than the gap could stand there.
+// Free space from beams only, no filling between them. Adjacent beams diverge by r *
+// angle_increment; beyond r = cell_size / angle_increment (34 m at 0.25 deg and 0.15 m) they are
+// farther apart than a cell, so some cells between beams get no evidence (0.5) and a far surface's
+// hit cells would have gaps, which the surface segments close (up to surface_gap_m). With the
+// default 60 m window centred on the ego, only its corners are that far from the lidar.
+// Consequence: there the grid learns free space more slowly (a 0.5 cell keeps its prediction, it is
+// never wrongly cleared) and a far surface is sampled sparsely in one scan, filled in across scans
+// as the ego moves. Filling the wedge between two beams instead would assert free space that no
+// beam observed: a pole narrower than the gap could stand there.
 //
 // The sweep is instantaneous (LidarScan's contract): every beam starts at the one sensor pose.
 

@@ -132,7 +132,9 @@ std::vector<int> ReferenceRanks(const LidarScan& scan, const Pose2& pose,
     const double length = (surface.end_m - surface.start_m).norm();
     for (long k = 0;; ++k) {
       const double t = std::min(length, static_cast<double>(k) * kStepM);
-      const Vector2d p = length > 0.0 ? Vector2d(surface.start_m + t / length * (surface.end_m - surface.start_m)) : surface.start_m;
+      const Vector2d p =
+          length > 0.0 ? Vector2d(surface.start_m + t / length * (surface.end_m - surface.start_m))
+                       : surface.start_m;
       if (const auto i = g.StorageIndexAt(p)) rank[*i] = 3;
       if (t >= length) break;
     }
@@ -252,10 +254,10 @@ TEST(InverseSensorModelTest, WallAtKnownDistance) {
   ExpectTouchedIsTheSupport(m);
 }
 
-// A wall parallel to the sensor's heading, 4.275 m to its right (mid-cell), seen from 10 to 80 degrees off
-// the axis: beyond a few metres its impacts are farther apart than a cell, and as the sensor
-// moves they slide along it. Joined as one surface, every cell the wall passes through between
-// the first and the last impact is a hit; without the segments, some are not.
+// A wall parallel to the sensor's heading, 4.275 m to its right (mid-cell), seen from 10 to 80
+// degrees off the axis: beyond a few metres its impacts are farther apart than a cell, and as the
+// sensor moves they slide along it. Joined as one surface, every cell the wall passes through
+// between the first and the last impact is a hit; without the segments, some are not.
 TEST(InverseSensorModelTest, ConsecutiveReturnsFromOneSurfaceAreJoined) {
   const ScrollingGridGeometry g(GridOptions{});
   constexpr double kWallM = 4.275;

@@ -4,7 +4,7 @@
 //
 // The form chosen (the paper leaves P(S) and Punseen vague), for each cell i of the update list:
 //   carried(i) = sum_j P(j -> i) O_{k-1}(j)                     over the sources j    (eq. 13)
-//   cover(i)   = sum_j P(j -> i)                                                       
+//   cover(i)   = sum_j P(j -> i)
 //   if i is a source (its content moved out):
 //     P(S=1) = cover(i), Pseen = carried(i) / cover(i)      (what the associations bring in)
 //     P(S=0) = 1 - cover(i), Punseen = gamma / 2            (new space: renewed towards unknown)
@@ -29,8 +29,8 @@
 //     the conservative union (the two being fully correlated).
 // The seen layer stores the share of the prior that tracked cells carried in:
 // S(i) = min(1, carried(i)) / prior(i), or O_{k-1}(i) S_{k-1}(i) / prior(i) where the cell's own
-// content wins the max (what stays keeps its seen share). Newly appearing occupancy has S ~ 0; it gets the wide
-// search of step 2 and zero velocity confidence (step 6).
+// content wins the max (what stays keeps its seen share). Newly appearing occupancy has S ~ 0; it
+// gets the wide search of step 2 and zero velocity confidence (step 6).
 
 #include <span>
 #include <vector>

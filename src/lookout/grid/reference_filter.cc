@@ -64,7 +64,8 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
           static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
       s.confidence = static_cast<double>(confidence[cell]);
       float pmf[kGridClassCount];
-      for (std::size_t c = 0; c < kGridClassCount; ++c) pmf[c] = layers.Values(ids.class_pmf[c])[cell];
+      for (std::size_t c = 0; c < kGridClassCount; ++c)
+        pmf[c] = layers.Values(ids.class_pmf[c])[cell];
       const SearchWindow w = SearchWindowFor(s.vx, s.vy, static_cast<double>(seen[cell]),
                                              s.confidence, pmf,
                                              dt_s, cell_m, options);
@@ -269,7 +270,8 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
     if (ws <= 0.0) continue;
     source_mx[j] = sx / ws;
     source_my[j] = sy / ws;
-    source_var[j] = std::max(0.0, s2 / ws - source_mx[j] * source_mx[j] - source_my[j] * source_my[j]);
+    source_var[j] =
+        std::max(0.0, s2 / ws - source_mx[j] * source_mx[j] - source_my[j] * source_my[j]);
   }
   std::vector<double> stayed(n, 0.0);
   for (std::size_t j = 0; j < sources.size(); ++j) {
@@ -289,7 +291,8 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
     const double ws = w_sum[i];
     if (ws > 0.0) {
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-        layers.Values(ids.rigidity[d])[i] = static_cast<float>(clinks[i * kNeighbourCount + d] / ws);
+        layers.Values(ids.rigidity[d])[i] =
+            static_cast<float>(clinks[i * kNeighbourCount + d] / ws);
       }
     } else if (is_source) {
       for (std::size_t d = 0; d < kNeighbourCount; ++d) layers.Values(ids.rigidity[d])[i] = 0.0f;

@@ -1,11 +1,12 @@
 #pragma once
 
 // A slow literal reference of the extended grid's steps 2-7 (docs/extended-grid.md), for tests
-// and for measuring the fast path's speed-up (`lookout bench`), never in the pipeline: the equations as they read, in double precision, scatter-based (each source pushes its
-// contributions into dense accumulators), no active-set bookkeeping, no target index, and the
-// literal O(M^6) rigidity term of eq. 11 (every move of every neighbour for every move of the
-// cell). It shares with the fast path only the window choice (SearchWindowFor: a design choice,
-// not an equation) and the options. Step 8 (classes) is not part of it.
+// and for measuring the fast path's speed-up (`lookout bench`), never in the pipeline: the
+// equations as they read, in double precision, scatter-based (each source pushes its contributions
+// into dense accumulators), no active-set bookkeeping, no target index, and the literal O(M^6)
+// rigidity term of eq. 11 (every move of every neighbour for every move of the cell). It shares
+// with the fast path only the window choice (SearchWindowFor: a design choice, not an equation) and
+// the options. Step 8 (classes) is not part of it.
 
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"

@@ -49,7 +49,9 @@ LidarScan ScanOf(const std::vector<std::pair<float, double>>& beams) {
   return scan;
 }
 
-std::size_t Beam(double degrees) { return static_cast<std::size_t>(std::lround((degrees + 30.0) / 0.5)); }
+std::size_t Beam(double degrees) {
+  return static_cast<std::size_t>(std::lround((degrees + 30.0) / 0.5));
+}
 
 TEST(HitClassification, FreeSpaceIsDynamicOccupiedIsStaticTheRestUnknown) {
   const LocalMap map = WallMap();

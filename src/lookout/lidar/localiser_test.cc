@@ -196,7 +196,8 @@ TEST(LidarLocaliser, LocaliseThenMapIsAddScan) {
     EXPECT_EQ(a.pose.y(), b.pose.y());
     EXPECT_EQ(a.pose.yaw, b.pose.yaw);
     const EgoState c = *half_mapped.LocaliseScan(scan, drive.odometry[k]);
-    const std::vector<Eigen::Vector2d> first_half(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2));
+    const std::vector<Eigen::Vector2d> first_half(
+        all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2));
     half_mapped.MapScan(scan, first_half, {});
     differs = differs || c.pose.x() != a.pose.x();
   }

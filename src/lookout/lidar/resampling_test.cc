@@ -23,7 +23,8 @@ TEST(Resampling, EffectiveSampleSizeBounds) {
 
 TEST(Resampling, NormalisesInTheLogDomain) {
   // exp(-1000) underflows; the normalisation must not.
-  const std::vector<double> w = NormaliseLogWeights(std::vector<double>{-1000.0, -1000.0 + std::log(3.0)});
+  const std::vector<double> w =
+      NormaliseLogWeights(std::vector<double>{-1000.0, -1000.0 + std::log(3.0)});
   EXPECT_NEAR(w[0], 0.25, 1e-12);
   EXPECT_NEAR(w[1], 0.75, 1e-12);
   const double inf = std::numeric_limits<double>::infinity();

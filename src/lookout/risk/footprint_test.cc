@@ -37,7 +37,9 @@ double ReferenceSeparation(const Footprint& a, const Footprint& b) {
   std::vector<double> coarse(kCoarse);
   for (int k = 0; k < kCoarse; ++k) coarse[static_cast<std::size_t>(k)] = overlap(k * kStep);
   for (int k = 0; k < kCoarse; ++k) {
-    const auto at = [&](int i) { return coarse[static_cast<std::size_t>((i + kCoarse) % kCoarse)]; };
+    const auto at = [&](int i) {
+      return coarse[static_cast<std::size_t>((i + kCoarse) % kCoarse)];
+    };
     if (at(k) <= at(k - 1) && at(k) <= at(k + 1)) minima.emplace_back(at(k), k * kStep);
   }
   std::sort(minima.begin(), minima.end());

@@ -81,7 +81,8 @@ bool SymmetricPsd(const Eigen::Matrix2d& p) {
 
 bool Valid(const ObjectInput& object) {
   if (!object.position_m.allFinite() || !object.velocity_mps.allFinite() ||
-      !std::isfinite(object.yaw_rate_radps) || (object.yaw_rad && !std::isfinite(*object.yaw_rad))) {
+      !std::isfinite(object.yaw_rate_radps) ||
+      (object.yaw_rad && !std::isfinite(*object.yaw_rad))) {
     return false;
   }
   return SymmetricPsd(object.position_covariance) && SymmetricPsd(object.velocity_covariance);

@@ -286,9 +286,9 @@ TEST(RiskAssessmentTest, AWalkerOnTheSidewalkMayWaitAtTheKerb) {
 // (west at 8 m/s in y = 1.75, 20 m from the junction) passes it in the next lane when it goes
 // straight on, and crosses its path in 1.5-2.4 s if it turns left (the arc of 12.8 m,
 // turn_hypotheses_test.cc, reaches the middle of the ego's lane at x = 2.3 after 2.33 s, when
-// the ego's centre is at x = 1). With the junction's map the left turn is a hypothesis of weight 0.5 (the
-// right turn is too tight at 8 m/s; straight on and left share the third it leaves), and the
-// most dangerous: its figures are the object's. Without the map, or at 20 m/s (no turn), only
+// the ego's centre is at x = 1). With the junction's map the left turn is a hypothesis of weight
+// 0.5 (the right turn is too tight at 8 m/s; straight on and left share the third it leaves), and
+// the most dangerous: its figures are the object's. Without the map, or at 20 m/s (no turn), only
 // straight on: no collision.
 TEST(RiskAssessmentTest, AnOncomingCarMayTurnAcrossThePath) {
   const RiskOptions o;

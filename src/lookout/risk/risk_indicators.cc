@@ -66,7 +66,9 @@ double CollisionProbability(const FootprintTrack& ego, const FootprintTrack& obj
     const double t = static_cast<double>(k) * dt_s;
     const Eigen::Vector2d relative = object[k].centre_m - ego[k].centre_m;
     const double reach = ego[k].BoundingRadius() + object[k].BoundingRadius();
-    if (relative.norm() - reach <= sp + t * sv) candidates.push_back({k, t, relative, reach * reach});
+    if (relative.norm() - reach <= sp + t * sv) {
+      candidates.push_back({k, t, relative, reach * reach});
+    }
   }
   if (candidates.empty()) return 0.0;
   // Each sample: the cheap bounding-circle test at the candidate steps, the exact test of the

@@ -59,7 +59,8 @@ LevelInput LevelsOf(const RiskAssessment& a, const WarningOptions& options) {
     in.held = std::max(in.held, ObjectLevel(o, a.sampled, options, true));
     const bool earlier = !named || (o.ttc_s && (!a.objects[*named].ttc_s ||
                                                 *o.ttc_s < *a.objects[*named].ttc_s));
-    if (entered > in.entered || (entered == in.entered && entered != WarningLevel::kNone && earlier)) {
+    if (entered > in.entered ||
+        (entered == in.entered && entered != WarningLevel::kNone && earlier)) {
       in.entered = entered;
       named = i;
     }

@@ -28,9 +28,10 @@ BenchmarkScene MakeBenchmarkScene(int targets, int false_objects, int scans, std
     const Kind& kind = kKinds[static_cast<std::size_t>(i) % kKinds.size()];
     const double heading = rng.Uniform(-std::numbers::pi, std::numbers::pi);
     // Starting inside the square's inner 60 %, so that nobody leaves it within a few seconds.
-    movers.push_back({{rng.Uniform(-0.6 * kHalf, 0.6 * kHalf), rng.Uniform(-0.6 * kHalf, 0.6 * kHalf)},
-                      kind.speed_mps * Eigen::Vector2d(std::cos(heading), std::sin(heading)),
-                      kind.object_class});
+    movers.push_back(
+        {{rng.Uniform(-0.6 * kHalf, 0.6 * kHalf), rng.Uniform(-0.6 * kHalf, 0.6 * kHalf)},
+         kind.speed_mps * Eigen::Vector2d(std::cos(heading), std::sin(heading)),
+         kind.object_class});
   }
   BenchmarkScene scene;
   scene.clutter_density_per_m2 =

@@ -55,7 +55,8 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     for (std::size_t j = 0; j < detections.size(); ++j) {
       if (!ClassesCompatible(tracks_[i].object_class, detections[j].object_class)) continue;
-      const MeasurementPrediction p = PredictMeasurement(tracks_[i].state, detections[j].covariance);
+      const MeasurementPrediction p =
+          PredictMeasurement(tracks_[i].state, detections[j].covariance);
       const Eigen::Vector2d v = detections[j].position_m - p.z;
       if (NormalisedSquare(v, p.S) > gate) continue;
       cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =

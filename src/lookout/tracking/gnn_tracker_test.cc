@@ -56,7 +56,8 @@ TEST(GnnTrackerTest, CrossingTargetsKeepTheirIds) {
       east_id = tracker.tracks()[0].Velocity().x() > tracker.tracks()[1].Velocity().x()
                     ? tracker.tracks()[0].id
                     : tracker.tracks()[1].id;
-      north_id = east_id == tracker.tracks()[0].id ? tracker.tracks()[1].id : tracker.tracks()[0].id;
+      north_id =
+          east_id == tracker.tracks()[0].id ? tracker.tracks()[1].id : tracker.tracks()[0].id;
     }
   }
   ASSERT_EQ(tracker.tracks().size(), 2u);

@@ -68,8 +68,9 @@ std::vector<Cluster> MakeClusters(const AssociationProblem& p) {
 
 // The cluster's m best choices by Murty's method on rows = its detections, columns = its tracks,
 // then one false-alarm and one new-track column per detection.
-void RankCluster(const AssociationProblem& p, const std::vector<std::vector<const GatedPair*>>& by_detection,
-                 std::size_t m, Cluster& c) {
+void RankCluster(const AssociationProblem& p,
+                 const std::vector<std::vector<const GatedPair*>>& by_detection, std::size_t m,
+                 Cluster& c) {
   const auto rows = static_cast<Eigen::Index>(c.detections.size());
   const auto tracks = static_cast<Eigen::Index>(c.tracks.size());
   if (rows == 1) {
@@ -98,8 +99,10 @@ void RankCluster(const AssociationProblem& p, const std::vector<std::vector<cons
   }
   Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(rows, tracks + 2 * rows, assignment::kForbidden);
   for (Eigen::Index r = 0; r < rows; ++r) {
-    for (const GatedPair* g : by_detection[static_cast<std::size_t>(c.detections[static_cast<std::size_t>(r)])]) {
-      const auto column = std::lower_bound(c.tracks.begin(), c.tracks.end(), g->track) - c.tracks.begin();
+    for (const GatedPair* g :
+         by_detection[static_cast<std::size_t>(c.detections[static_cast<std::size_t>(r)])]) {
+      const auto column =
+          std::lower_bound(c.tracks.begin(), c.tracks.end(), g->track) - c.tracks.begin();
       cost(r, static_cast<Eigen::Index>(column)) = g->cost;
     }
     cost(r, tracks + r) = p.false_alarm_cost;
@@ -141,7 +144,8 @@ std::vector<RankedAssociation> BestAssociations(const AssociationProblem& p, std
   std::vector<RankedAssociation> out;
   if (m == 0) return out;
   std::vector<std::vector<const GatedPair*>> by_detection(static_cast<std::size_t>(p.detections));
-  for (const GatedPair& g : p.pairs) by_detection[static_cast<std::size_t>(g.detection)].push_back(&g);
+  for (const GatedPair& g : p.pairs)
+    by_detection[static_cast<std::size_t>(g.detection)].push_back(&g);
 
   std::vector<Cluster> clusters = MakeClusters(p);
   double fixed_cost = 0.0;  // of the clusters with a single choice
@@ -164,7 +168,9 @@ std::vector<RankedAssociation> BestAssociations(const AssociationProblem& p, std
     for (std::size_t k = 0, v = 0; k < clusters.size(); ++k) {
       const Cluster& c = clusters[k];
       std::size_t pick = 0;
-      if (v < varying.size() && varying[v] == k) pick = static_cast<std::size_t>(combination.choice[v++]);
+      if (v < varying.size() && varying[v] == k) {
+        pick = static_cast<std::size_t>(combination.choice[v++]);
+      }
       for (std::size_t r = 0; r < c.detections.size(); ++r) {
         a.track_of_detection[static_cast<std::size_t>(c.detections[r])] = c.assignments[pick][r];
       }

@@ -45,7 +45,8 @@ struct RankedAssociation {
 
 // The min(m, all) least-cost associations, cheapest first. Equal costs come out in a fixed
 // order (clusters by their first detection; within a cluster, Murty's order, or for a single
-// detection its tracks in order, then false alarm, then new track), so the result is the same on every run. No detections: one empty association.
+// detection its tracks in order, then false alarm, then new track), so the result is the same on
+// every run. No detections: one empty association.
 std::vector<RankedAssociation> BestAssociations(const AssociationProblem& problem, std::size_t m);
 
 }  // namespace lookout::tracking

@@ -35,8 +35,9 @@ std::vector<RankedAssociation> Enumerate(const AssociationProblem& p) {
     }
   };
   visit(0, 0.0);
-  std::stable_sort(all.begin(), all.end(),
-                   [](const RankedAssociation& a, const RankedAssociation& b) { return a.cost < b.cost; });
+  std::stable_sort(
+      all.begin(), all.end(),
+      [](const RankedAssociation& a, const RankedAssociation& b) { return a.cost < b.cost; });
   return all;
 }
 
@@ -92,7 +93,8 @@ TEST(HypothesisRanking, TheMBestAgreeWithBruteForceEnumeration) {
         // Distinct associations: no combination comes out twice.
         for (std::size_t a = 0; a < ranked.size(); ++a) {
           for (std::size_t b = a + 1; b < ranked.size(); ++b) {
-            EXPECT_NE(ranked[a].track_of_detection, ranked[b].track_of_detection) << "seed " << seed;
+            EXPECT_NE(ranked[a].track_of_detection, ranked[b].track_of_detection)
+                << "seed " << seed;
           }
         }
       }

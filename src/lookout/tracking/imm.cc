@@ -116,7 +116,9 @@ Gaussian MomentMatch(const std::vector<std::vector<int>>& member_components,
           IndexOf(member_components[i], components[static_cast<std::size_t>(a)]);
     }
   }
-  const auto at = [&](std::size_t i, Eigen::Index a) { return where[i][static_cast<std::size_t>(a)]; };
+  const auto at = [&](std::size_t i, Eigen::Index a) {
+    return where[i][static_cast<std::size_t>(a)];
+  };
 
   // The fill of each component: the moment-matched mean and variance over its carriers.
   SmallVector fill_mean = SmallVector::Zero(n);

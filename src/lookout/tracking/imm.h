@@ -62,8 +62,8 @@ struct ImmState {
 // Every model starts from `prior`, given in the canonical components listed in `components`
 // (e.g. {kX, kY, kVx, kVy}); a component the prior lacks starts at 0 with variance
 // `unknown_variance` (accelerations, turn rate).
-ImmState InitImm(const ImmOptions& options, const Gaussian& prior, const std::vector<int>& components,
-                 double unknown_variance, TimeNs time);
+ImmState InitImm(const ImmOptions& options, const Gaussian& prior,
+                 const std::vector<int>& components, double unknown_variance, TimeNs time);
 
 // Moment-matched Gaussian of the mixture sum_i weights_i N(members_i), each member in the
 // canonical components `member_components[i]`, expressed in `components`. Members lacking a

@@ -129,7 +129,8 @@ constexpr double kCtrRatePsd = 0.01;
 constexpr double kCtrStay = 0.8;
 constexpr double kCtrGate = 0.999;
 
-TrackerOptions ImmTracker(double sigma, double cv, double ca, double rate, double turn, double stay) {
+TrackerOptions ImmTracker(double sigma, double cv, double ca, double rate, double turn,
+                          double stay) {
   TrackerOptions o;
   o.imm = FourModelImm(cv, ca, rate, turn, stay);
   o.measurement_std_m = sigma;
@@ -246,8 +247,9 @@ TEST(JoyrideEvaluation, DISABLED_GridSearch) {
           for (const double stay : {0.8, 0.9}) {
             TrackerOptions o = CvCtrTracker(sigma, cv, rate_psd, stay);
             o.gate_probability = gate;
-            std::snprintf(name, sizeof name, "CTR gate %.4f sigma %4.1f q %5.2f qw %6.4f stay %4.2f",
-                          gate, sigma, cv, rate_psd, stay);
+            std::snprintf(name, sizeof name,
+                          "CTR gate %.4f sigma %4.1f q %5.2f qw %6.4f stay %4.2f", gate, sigma, cv,
+                          rate_psd, stay);
             line(name, Evaluate(o, data));
           }
         }

@@ -30,15 +30,17 @@ TEST(Kalman, JosephUpdateEqualsTheStandardFormForTheOptimalGain) {
   EXPECT_TRUE(u.posterior.cov.isApprox(prior.cov - K * S * K.transpose(), 1e-12));
   const Eigen::Vector2d nu = z - H * prior.mean;
   EXPECT_NEAR(u.nis, nu.dot(S.inverse() * nu), 1e-12);
-  EXPECT_NEAR(u.log_likelihood,
-              std::log(std::exp(-0.5 * u.nis) / (2.0 * std::numbers::pi * std::sqrt(S.determinant()))),
-              1e-12);
+  EXPECT_NEAR(
+      u.log_likelihood,
+      std::log(std::exp(-0.5 * u.nis) / (2.0 * std::numbers::pi * std::sqrt(S.determinant()))),
+      1e-12);
 }
 
 // Scalar case per axis: prior variance p, noise r: posterior variance p r / (p + r).
 TEST(Kalman, PositionOnlyCaseIsTheScalarFormula) {
   Gaussian prior{Eigen::Vector4d::Zero(), Eigen::Matrix4d::Identity() * 4.0};
-  const UpdateResult u = UpdateState(prior, Eigen::Vector2d(1.0, -1.0), Eigen::Matrix2d::Identity());
+  const UpdateResult u =
+      UpdateState(prior, Eigen::Vector2d(1.0, -1.0), Eigen::Matrix2d::Identity());
   EXPECT_NEAR(u.posterior.cov(0, 0), 0.8, 1e-12);
   EXPECT_NEAR(u.posterior.mean(0), 0.8, 1e-12);
   EXPECT_NEAR(u.posterior.mean(1), -0.8, 1e-12);

@@ -37,7 +37,8 @@ double ImmLogLikelihood(const ImmState& predicted, const ImmMeasurementPredictio
   for (std::size_t j = 0; j < p.per_mode.size(); ++j) {
     const double c = predicted.probabilities(static_cast<Eigen::Index>(j));
     if (c > 0.0) {
-      terms.push_back(std::log(c) + GaussianLogLikelihood(z - p.per_mode[j].z, p.per_mode[j].S + R));
+      terms.push_back(std::log(c) +
+                      GaussianLogLikelihood(z - p.per_mode[j].z, p.per_mode[j].S + R));
     }
   }
   return LogSumExp(terms);
@@ -305,7 +306,9 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
       if (node) h.tracks.push_back(std::move(node));
     }
     for (int j = 0; j < detection_count; ++j) {
-      if (c.track_of_detection[static_cast<std::size_t>(j)] == kNewTrack) h.tracks.push_back(born(j));
+      if (c.track_of_detection[static_cast<std::size_t>(j)] == kNewTrack) {
+        h.tracks.push_back(born(j));
+      }
     }
     std::sort(h.tracks.begin(), h.tracks.end(),
               [](const NodePtr& a, const NodePtr& b) { return a->tree < b->tree; });

@@ -77,10 +77,14 @@ CrossingResult RunCrossing(T& tracker, std::uint64_t seed, const Crossing& c = {
     std::vector<Detection> scan;
     const Eigen::Vector2d a = truth(0, k), b = truth(1, k);
     if ((a - b).norm() < kMerge) {
-      if (rng.Bernoulli(kPd)) scan.push_back(At(0.5 * (a + b) + Noise(rng, kSigma), ObjectClass::kCar, 1, kSigma));
+      if (rng.Bernoulli(kPd)) {
+        scan.push_back(At(0.5 * (a + b) + Noise(rng, kSigma), ObjectClass::kCar, 1, kSigma));
+      }
     } else {
       for (const Eigen::Vector2d& p : {a, b}) {
-        if (rng.Bernoulli(kPd)) scan.push_back(At(p + Noise(rng, kSigma), ObjectClass::kCar, 1, kSigma));
+        if (rng.Bernoulli(kPd)) {
+          scan.push_back(At(p + Noise(rng, kSigma), ObjectClass::kCar, 1, kSigma));
+        }
       }
     }
     EXPECT_TRUE(tracker.Step(k * kStep, scan));
@@ -299,7 +303,8 @@ TEST(MhtTrackerTest, AWalkersNarrowVelocityPriorSettlesSooner) {
 
 TEST(MhtTrackerTest, ClassGatingHoldsInEveryHypothesis) {
   MhtTracker tracker;
-  for (int k = 0; k < 5; ++k) tracker.Step(k * kStep, {At({10.0 * kDt * k, 0.0}, ObjectClass::kCar, 2)});
+  for (int k = 0; k < 5; ++k)
+    tracker.Step(k * kStep, {At({10.0 * kDt * k, 0.0}, ObjectClass::kCar, 2)});
   ASSERT_EQ(tracker.ConfirmedTracks().size(), 1u);
   tracker.Step(5 * kStep, {At({10.0 * kDt * 5, 0.0}, ObjectClass::kPedestrian)});
   const std::vector<std::vector<Track>> hypotheses = tracker.HypothesisTracks();
