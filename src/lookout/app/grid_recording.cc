@@ -31,8 +31,9 @@ std::vector<io::GridLayer8> GridLayersToRecord(const grid::ExtendedGrid& grid) {
   std::array<std::vector<float>, grid::kGridClassCount> pmf;
   for (std::size_t c = 0; c < pmf.size(); ++c) pmf[c] = layers.CopyInWindowOrder(ids.class_pmf[c]);
   std::array<std::vector<float>, grid::kNeighbourCount> links;
-  for (std::size_t d = 0; d < links.size(); ++d)
+  for (std::size_t d = 0; d < links.size(); ++d) {
     links[d] = layers.CopyInWindowOrder(ids.rigidity[d]);
+  }
 
   const std::size_t n = o.size();
   std::vector<io::GridLayer8> out = {{"occupancy", {}},  {"speed", {}},

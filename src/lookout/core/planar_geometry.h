@@ -1,7 +1,8 @@
 #pragma once
 
 // Point-against-polygon and point-against-segment tests in the plane, shared by the grid's
-// class regions, the risk stage's box distances, the ego map's buildings and the grid metrics.
+// class regions, the risk stage's box distances, the ego map's buildings and the grid metrics;
+// and the plane's cross product, which the simulator, the segmentation and the turn paths use.
 // Inline: the grid calls the first per cell and the risk stage the second per pair of boxes and
 // step.
 
@@ -10,6 +11,11 @@
 #include <vector>
 
 namespace lookout {
+
+// The z component of the 3-D cross product (a, 0) x (b, 0): > 0 when b is counter-clockwise of a.
+inline double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // Even-odd rule: a horizontal ray from `p` crosses the ring an odd number of times. `ring` is a
 // simple closed ring, either orientation (the last vertex joins the first); a point on an edge

@@ -9,8 +9,9 @@ void ClassAccuracyAccumulator::AddFrame(std::span<const float> occupancy,
                                         const sim::TruthRaster& raster,
                                         std::span<const sim::ActorTruth> actors) {
   std::map<int, int> class_of;
-  for (const sim::ActorTruth& a : actors)
+  for (const sim::ActorTruth& a : actors) {
     class_of[a.index] = grid_class_of_[static_cast<std::size_t>(a.object_class)];
+  }
   for (std::size_t i = 0; i < raster.owner.size(); ++i) {
     const auto it = class_of.find(raster.owner[i]);
     if (it == class_of.end()) continue;  // static world, free, or not an actor of this frame

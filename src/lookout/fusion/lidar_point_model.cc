@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lookout/core/planar_geometry.h"
 #include "lookout/core/pose2.h"
 
 namespace lookout::fusion {
@@ -96,7 +97,7 @@ Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_clas
   const Vector2d beam = ray / range;
   // The side's direction; a segment of one cell runs across the ray.
   const Vector2d u = visible > 1e-9 ? Vector2d(segment / visible) : Vector2d(-beam.y(), beam.x());
-  const double cos_incidence = std::abs(beam.x() * u.y() - beam.y() * u.x());
+  const double cos_incidence = std::abs(Cross(beam, u));
   const double spacing =
       range * options.beam_spacing_rad / std::max(cos_incidence, kMinCosineOfIncidence);
   double var_along = EndResolutionVariance(spacing, options.grid_cell_size_m);

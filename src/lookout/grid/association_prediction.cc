@@ -62,11 +62,13 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   const auto confidence = layers.Values(ids.velocity_confidence);
   const double cell_size_m = layers.geometry().cell_size_m();
   std::array<std::span<const float>, kGridClassCount> class_layers;
-  for (std::size_t k = 0; k < kGridClassCount; ++k)
+  for (std::size_t k = 0; k < kGridClassCount; ++k) {
     class_layers[k] = layers.Values(ids.class_pmf[k]);
+  }
   std::array<std::span<const float>, kNeighbourCount> rigidity_layers;
-  for (std::size_t d = 0; d < kNeighbourCount; ++d)
+  for (std::size_t d = 0; d < kNeighbourCount; ++d) {
     rigidity_layers[d] = layers.Values(ids.rigidity[d]);
+  }
 
   // Sources in storage order (a fixed order for a given window: every later sum follows it).
   // One pass over two contiguous layers; the local cell is computed only for the sources.

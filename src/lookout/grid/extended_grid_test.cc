@@ -502,8 +502,9 @@ TEST(ExtendedGridTest, TwoCellsCannotMergeIntoOne) {
       l.Values(grid.ids().velocity_x_mps)[cell] = static_cast<float>(vx);
       l.Values(grid.ids().velocity_confidence)[cell] = 1.0f;
       l.Values(grid.ids().class_pmf[0])[cell] = 0.96f;  // static: narrowest sigma
-      for (std::size_t c = 1; c < kGridClassCount; ++c)
+      for (std::size_t c = 1; c < kGridClassCount; ++c) {
         l.Values(grid.ids().class_pmf[c])[cell] = 0.01f;
+      }
     }
     grid.Update(Measure(g, {}, /*observed=*/false), kDtS);
     return static_cast<double>(l.Values(grid.ids().occupancy)[g.StorageIndexOfLocal({12, 12})]);

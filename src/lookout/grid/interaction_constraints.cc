@@ -259,8 +259,9 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
         sum += p;
       });
       if (sum <= 0.0) {  // every move forbidden (underflow): keep Pw
-        for (std::size_t k = 0; k < w.EntryCount(); ++k)
+        for (std::size_t k = 0; k < w.EntryCount(); ++k) {
           constrained[first + k] = a.weight[first + k];
+        }
         continue;
       }
       const double inv_sum = 1.0 / sum;

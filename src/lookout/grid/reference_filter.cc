@@ -64,8 +64,9 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
           static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
       s.confidence = static_cast<double>(confidence[cell]);
       float pmf[kGridClassCount];
-      for (std::size_t c = 0; c < kGridClassCount; ++c)
+      for (std::size_t c = 0; c < kGridClassCount; ++c) {
         pmf[c] = layers.Values(ids.class_pmf[c])[cell];
+      }
       const SearchWindow w = SearchWindowFor(s.vx, s.vy, static_cast<double>(seen[cell]),
                                              s.confidence, pmf,
                                              dt_s, cell_m, options);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "lookout/core/input_error.h"
+#include "lookout/core/planar_geometry.h"
 
 namespace lookout::lidar {
 namespace {
@@ -49,8 +50,7 @@ std::pair<std::size_t, double> FurthestFromChord(std::span<const Vector2d> point
   double best_distance = 0.0;
   for (std::size_t k = 1; k + 1 < points.size(); ++k) {
     const Vector2d d = points[k] - a;
-    const double distance = length > 0.0 ? std::abs(chord.x() * d.y() - chord.y() * d.x()) / length
-                                          : d.norm();
+    const double distance = length > 0.0 ? std::abs(Cross(chord, d)) / length : d.norm();
     if (distance > best_distance) {
       best_distance = distance;
       best = k;
@@ -79,7 +79,7 @@ double BeamSpacingOnSurface(const Vector2d& from_lidar, const Vector2d& along, d
   const double r = from_lidar.norm();
   if (r <= 0.0) return 0.0;
   const Vector2d beam = from_lidar / r;
-  const double cos_incidence = std::abs(beam.x() * along.y() - beam.y() * along.x());
+  const double cos_incidence = std::abs(Cross(beam, along));
   return r * dphi_rad / std::max(cos_incidence, kMinIncidenceCosine);
 }
 
@@ -94,17 +94,14 @@ double HiddenExtent(const LidarScan& scan, std::size_t end_beam, int step, const
                     const Vector2d& end_point, const Vector2d& outward, double margin_m,
                     double cap_m) {
   const Vector2d lidar = scan.mount.translation;
-  const auto cross = [](const Vector2d& a, const Vector2d& b) {
-    return a.x() * b.y() - a.y() * b.x();
-  };
   for (std::ptrdiff_t k = static_cast<std::ptrdiff_t>(end_beam) + step;
        k >= 0 && k < static_cast<std::ptrdiff_t>(scan.ranges_m.size()); k += step) {
     const std::size_t i = static_cast<std::size_t>(k);
     const double a = scan.mount.yaw + scan.BeamAngle(i);
     const Vector2d beam(std::cos(a), std::sin(a));
-    const double denominator = cross(beam, line.direction);
+    const double denominator = Cross(beam, line.direction);
     if (std::abs(denominator) < 1e-9) return cap_m;
-    const double lambda = cross(line.mean - lidar, line.direction) / denominator;
+    const double lambda = Cross(line.mean - lidar, line.direction) / denominator;
     if (lambda <= 0.0) return cap_m;
     const double extent = outward.dot(lidar + lambda * beam - end_point);
     if (extent >= cap_m) return cap_m;

@@ -60,10 +60,12 @@ double RectangleSeparation(const Footprint& a, const Footprint& b) {
   double distance = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < 4; ++i) {
     const std::size_t j = (i + 1) % 4;
-    for (const Eigen::Vector2d& p : ca)
+    for (const Eigen::Vector2d& p : ca) {
       distance = std::min(distance, PointToSegment(p, cb[i], cb[j]));
-    for (const Eigen::Vector2d& p : cb)
+    }
+    for (const Eigen::Vector2d& p : cb) {
       distance = std::min(distance, PointToSegment(p, ca[i], ca[j]));
+    }
   }
   return distance;
 }

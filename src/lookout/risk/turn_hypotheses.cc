@@ -5,12 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#include "lookout/core/planar_geometry.h"
+
 namespace lookout::risk {
 namespace {
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 Eigen::Vector2d LeftOf(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "lookout/core/planar_geometry.h"
 #include "lookout/core/pose2.h"
 
 namespace lookout::sim {
@@ -13,10 +14,7 @@ namespace lookout::sim {
 // Who a shape belongs to: the static world, or an actor by its index in Scenario::actors.
 inline constexpr int kStaticOwner = -1;
 
-// The z component of the 3-D cross product (a, 0) x (b, 0): > 0 when b is counter-clockwise of a.
-inline double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+using lookout::Cross;  // core/planar_geometry.h
 
 struct Shape {
   enum class Kind { kPolygon, kCircle };

@@ -32,8 +32,9 @@ TEST(BenchmarkScene, HasTheTargetsAndFalseObjectsItSays) {
 // track within 1 m, and few false objects made one.
 template <typename T>
 void ExpectTracksTheScene(T& tracker, const BenchmarkScene& scene, const char* name) {
-  for (std::size_t k = 0; k < scene.scans.size(); ++k)
+  for (std::size_t k = 0; k < scene.scans.size(); ++k) {
     tracker.Step(scene.stamps[k], scene.scans[k]);
+  }
   const std::vector<Track> tracks = tracker.ConfirmedTracks();
   int found = 0;
   for (const Eigen::Vector2d& p : scene.truth.back()) {

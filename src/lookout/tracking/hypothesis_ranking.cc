@@ -144,8 +144,9 @@ std::vector<RankedAssociation> BestAssociations(const AssociationProblem& p, std
   std::vector<RankedAssociation> out;
   if (m == 0) return out;
   std::vector<std::vector<const GatedPair*>> by_detection(static_cast<std::size_t>(p.detections));
-  for (const GatedPair& g : p.pairs)
+  for (const GatedPair& g : p.pairs) {
     by_detection[static_cast<std::size_t>(g.detection)].push_back(&g);
+  }
 
   std::vector<Cluster> clusters = MakeClusters(p);
   double fixed_cost = 0.0;  // of the clusters with a single choice

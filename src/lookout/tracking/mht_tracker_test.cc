@@ -303,8 +303,9 @@ TEST(MhtTrackerTest, AWalkersNarrowVelocityPriorSettlesSooner) {
 
 TEST(MhtTrackerTest, ClassGatingHoldsInEveryHypothesis) {
   MhtTracker tracker;
-  for (int k = 0; k < 5; ++k)
+  for (int k = 0; k < 5; ++k) {
     tracker.Step(k * kStep, {At({10.0 * kDt * k, 0.0}, ObjectClass::kCar, 2)});
+  }
   ASSERT_EQ(tracker.ConfirmedTracks().size(), 1u);
   tracker.Step(5 * kStep, {At({10.0 * kDt * 5, 0.0}, ObjectClass::kPedestrian)});
   const std::vector<std::vector<Track>> hypotheses = tracker.HypothesisTracks();

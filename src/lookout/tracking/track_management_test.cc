@@ -103,8 +103,9 @@ TEST(TrackManagement, TheCamerasSilenceEndsAGhost) {
   EXPECT_GT(walker.existence_log_odds, 0.0);
 
   Track beside = BornTrack(o, WithCamera(CameraEvidence::kNone), 0);
-  for (int k = 0; k < 10; ++k)
+  for (int k = 0; k < 10; ++k) {
     beside = AfterDetection(o, beside, WithCamera(CameraEvidence::kNone));
+  }
   EXPECT_FALSE(Expired(o, beside));
   EXPECT_EQ(beside.existence_log_odds, 0.0);
   EXPECT_EQ(beside.status, TrackStatus::kConfirmed);
