@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "lookout/lidar/dynamic_segments.h"
 
@@ -80,37 +81,53 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
 }
 
 void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& unmapped) {
+  const std::size_t n = scan.ranges_m.size();
+  const double min_range = options_.hits.min_range_m;
+  // How far each beam may clear: up to the nearer of its neighbours' returns, less the margin
+  // (LidarChainOptions::neighbour_clear_margin_m), when that is nearer than its own.
+  std::vector<double> clear_to(n, std::numeric_limits<double>::infinity());
+  if (options_.neighbour_clear_margin_m >= 0.0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const std::size_t j : {i - 1, i + 1}) {  // i - 1 wraps past n at i = 0
+        if (j >= n || !lidar::IsReturn(scan, j, min_range)) continue;
+        const double r = static_cast<double>(scan.ranges_m[j]) - options_.neighbour_clear_margin_m;
+        clear_to[i] = std::min(clear_to[i], std::max(r, 0.0));
+      }
+    }
+  }
+  const auto along = [&scan](std::size_t i, double r) {
+    const double a = scan.BeamAngle(i);
+    return scan.mount * Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
+  };
   std::vector<Eigen::Vector2d> hits;
+  std::vector<Eigen::Vector2d> bare_hits;
   std::vector<Eigen::Vector2d> free_ends;
   std::vector<Eigen::Vector2d> empty_ends;
-  hits.reserve(scan.ranges_m.size());
-  const Eigen::Vector2d origin = scan.mount.translation;
-  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+  hits.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
     const lidar::HitClass k = hits_.beam[i];
     if (k == lidar::HitClass::kNoReturn) {
       if (options_.no_return_clear_m > 0.0 && lidar::IsEmptyBeam(scan, i)) {
-        const double a = scan.BeamAngle(i);
-        const double r = scan.max_range_m > 0.0
-                             ? std::min(options_.no_return_clear_m, scan.max_range_m)
-                             : options_.no_return_clear_m;
-        empty_ends.push_back(scan.mount * Eigen::Vector2d(r * std::cos(a), r * std::sin(a)));
+        double r = std::min(options_.no_return_clear_m, clear_to[i]);
+        if (scan.max_range_m > 0.0) r = std::min(r, scan.max_range_m);
+        if (r > 0.0) empty_ends.push_back(along(i, r));
       }
       continue;
     }
-    const Eigen::Vector2d p = lidar::ReturnPoint(scan, i);
+    const double range = static_cast<double>(scan.ranges_m[i]);
     const bool clears_only = options_.map_static_only &&
                              (k == lidar::HitClass::kDynamic || (!unmapped.empty() && unmapped[i]));
-    if (!clears_only) {
-      hits.push_back(p);
-      continue;
-    }
-    const Eigen::Vector2d ray = p - origin;
-    const double r = ray.norm();
-    if (r > options_.dynamic_ray_margin_m) {
-      free_ends.push_back(origin + ray * ((r - options_.dynamic_ray_margin_m) / r));
+    if (clears_only) {
+      const double r = std::min(range - options_.dynamic_ray_margin_m, clear_to[i]);
+      if (r > 0.0) free_ends.push_back(along(i, r));
+    } else if (clear_to[i] < range) {
+      bare_hits.push_back(along(i, range));
+      if (clear_to[i] > 0.0) free_ends.push_back(along(i, clear_to[i]));
+    } else {
+      hits.push_back(along(i, range));
     }
   }
-  localiser_.MapScan(scan, hits, free_ends, empty_ends);
+  localiser_.MapScan(scan, hits, free_ends, empty_ends, bare_hits);
 }
 
 }  // namespace lookout::app

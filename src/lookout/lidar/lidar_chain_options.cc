@@ -8,7 +8,8 @@ namespace lookout::lidar {
 
 SlamOptions VehicleLocaliserOptions() {
   SlamOptions o;
-  o.map.window_cells = 2048;
+  o.map.window_cells = 4096;
+  o.map.max_insert_range_m = 80.0;
   o.motion.kind = MotionModelKind::kBicycle;
   // A car's wheel odometry errs by about 2 % of the distance and its steering reading by a few
   // milliradians: much tighter than the robot logs' 10 % and 0.02 rad.
@@ -40,6 +41,9 @@ void LidarChainOptions::Validate(const std::string& source) const {
   }
   if (!std::isfinite(dynamic_ray_margin_m) || dynamic_ray_margin_m < 0.0) {
     throw InputError(source, 0, "dynamic_ray_margin_m", "must be finite and >= 0");
+  }
+  if (!std::isfinite(neighbour_clear_margin_m)) {
+    throw InputError(source, 0, "neighbour_clear_margin_m", "must be finite");
   }
   if (!std::isfinite(no_return_clear_m) || no_return_clear_m < 0.0) {
     throw InputError(source, 0, "no_return_clear_m", "must be finite and >= 0");

@@ -13,10 +13,12 @@
 
 namespace lookout::lidar {
 
-// The localiser for a road vehicle at 12.5 Hz: the bicycle motion model, a 102 m map window of
-// 0.05 m cells (the scanner sees 150 m, but the map takes returns up to 40 m), and a search
-// window sized for a car's wheel odometry over one scan period (0.9 m at 11 m/s): a few
-// centimetres and a fraction of a degree, against the robot logs' metre and half radian.
+// The localiser for a road vehicle at 12.5 Hz: the bicycle motion model, a 205 m map window of
+// 0.05 m cells taking returns up to 80 m (the scanner sees 150 m; a car closing at 20 m/s must
+// be seen moving 2 s before it arrives, so the map must have seen the road free out there:
+// docs/lidar-chain.md), and a search window sized for a car's wheel odometry over one scan
+// period (0.9 m at 11 m/s): a few centimetres and a fraction of a degree, against the robot
+// logs' metre and half radian.
 SlamOptions VehicleLocaliserOptions();
 
 struct LidarChainOptions {
@@ -40,9 +42,17 @@ struct LidarChainOptions {
   // A beam with no return within the scanner's range (+inf, or at max_range_m) says the space
   // along it is empty: it clears its ray up to this range (and the map's insert range), so
   // that the open road an actor drives into has been seen free before the actor is on it.
+  // As far as the map's insert range (VehicleLocaliserOptions).
   // 0: no-return beams clear nothing, as in `lookout slam` (the CARMEN lasers' saturated codes
   // and the glass of buildings). NaN, negative and too-near beams never clear.
-  double no_return_clear_m = 40.0;
+  double no_return_clear_m = 80.0;
+  // A beam clears its ray only up to where its two neighbouring beams found a surface, less
+  // this margin, when that is nearer than its own return. A beam is as wide as the gap between
+  // beams: one that passes a surface at a grazing angle (the side of a parked car seen from
+  // 60 m, 2 degrees off its face) runs within centimetres of the cells its neighbour hit, and
+  // over many scans wiped the face out of the map, so that the car read as moving when the
+  // ego came near (docs/lidar-chain.md). Negative: rays clear up to their own return.
+  double neighbour_clear_margin_m = 0.2;
 
   void Validate(const std::string& source = "lidar chain options") const;
 };

@@ -189,7 +189,8 @@ Eigen::Vector2d LocalMap::ClipToRange(const Eigen::Vector2d& origin, const Eigen
 
 void LocalMap::InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::Vector2d> hits,
                           std::span<const Eigen::Vector2d> free_ends,
-                          std::span<const Eigen::Vector2d> empty_ends) {
+                          std::span<const Eigen::Vector2d> empty_ends,
+                          std::span<const Eigen::Vector2d> bare_hits) {
   ++current_stamp_;
   if (current_stamp_ == 0) {  // the counter wrapped: no stale stamp may equal a new one
     std::fill(stamp_.begin(), stamp_.end(), std::uint16_t{0});
@@ -201,11 +202,13 @@ void LocalMap::InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::
 
   // Hits first (see the header): a cell hit in this scan is then stamped and no miss of the
   // same scan can lower it.
-  for (const Eigen::Vector2d& p : hits) {
-    bool clipped = false;
-    const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
-    const CellIndex c = CellOf(end);
-    if (!clipped && InWindow(c)) UpdateCell(c, true);
+  for (const auto& points : {hits, bare_hits}) {
+    for (const Eigen::Vector2d& p : points) {
+      bool clipped = false;
+      const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
+      const CellIndex c = CellOf(end);
+      if (!clipped && InWindow(c)) UpdateCell(c, true);
+    }
   }
   for (const Eigen::Vector2d& p : hits) {
     bool clipped = false;

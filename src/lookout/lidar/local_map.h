@@ -63,9 +63,12 @@ class LocalMap {
   // clear space only up to the first cell that is occupied at the start of the scan: a beam
   // with no return through a mapped wall is the wall's return lost (glass, a dark surface, a
   // dropout), not the wall gone.
+  // `bare_hits`: returns whose cell is hit but whose ray the caller clears itself (as a free
+  // end short of the return), e.g. only up to where the neighbouring beams found a surface.
   void InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::Vector2d> hits,
                   std::span<const Eigen::Vector2d> free_ends,
-                  std::span<const Eigen::Vector2d> empty_ends = {});
+                  std::span<const Eigen::Vector2d> empty_ends = {},
+                  std::span<const Eigen::Vector2d> bare_hits = {});
 
   float LogOdds(const CellIndex& c) const;  // 0 outside the window
   bool Occupied(const CellIndex& c) const { return LogOdds(c) > options_.occupied_log_odds; }

@@ -119,6 +119,25 @@ TEST(LocalMap, HitsBeyondInsertRangeOnlyClear) {
   EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), 0.0f);
 }
 
+// A bare hit marks its cell and clears nothing: its ray is the caller's (the lidar chain clears
+// it only up to where the neighbouring beams found a surface).
+TEST(LocalMap, BareHitsMarkTheirCellOnly) {
+  const MapOptions o = SmallMap();
+  LocalMap map(o);
+  const Eigen::Vector2d origin(0.05, 0.05);
+  const std::vector<Eigen::Vector2d> bare = {{3.05, 0.05}};
+  const std::vector<Eigen::Vector2d> short_ray = {{1.05, 0.05}};
+  map.InsertScan(origin, {}, short_ray, {}, bare);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), o.log_odds_hit);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({0.55, 0.05})), o.log_odds_miss);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({2.05, 0.05})), 0.0f);
+  // The same return as an ordinary hit clears its whole ray.
+  LocalMap whole(o);
+  whole.InsertScan(origin, bare, {});
+  EXPECT_FLOAT_EQ(whole.LogOdds(whole.CellOf({2.05, 0.05})), o.log_odds_miss);
+  EXPECT_FLOAT_EQ(whole.LogOdds(whole.CellOf({3.05, 0.05})), o.log_odds_hit);
+}
+
 // A beam that saw nothing clears its ray only up to the first occupied cell: the mapped wall
 // it should have hit keeps its log-odds and the space behind the wall stays unknown; the
 // same ray as a free end (a dynamic return's) clears through.

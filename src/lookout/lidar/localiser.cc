@@ -150,7 +150,8 @@ void LidarLocaliser::Correct(std::span<const Eigen::Vector2d> points, const Pose
 
 void LidarLocaliser::MapScan(const LidarScan& scan, std::span<const Eigen::Vector2d> hits,
                              std::span<const Eigen::Vector2d> free_ends,
-                             std::span<const Eigen::Vector2d> empty_ends) {
+                             std::span<const Eigen::Vector2d> empty_ends,
+                             std::span<const Eigen::Vector2d> bare_hits) {
   if (scans_.empty() || scans_.back().state.stamp != scan.stamp) return;
   const Pose2& pose = scans_.back().state.pose;
   map_.RecentreOn(pose.translation);
@@ -161,7 +162,7 @@ void LidarLocaliser::MapScan(const LidarScan& scan, std::span<const Eigen::Vecto
     return out;
   };
   map_.InsertScan(pose * scan.mount.translation, to_map(hits), to_map(free_ends),
-                  to_map(empty_ends));
+                  to_map(empty_ends), to_map(bare_hits));
 }
 
 std::optional<EgoState> LidarLocaliser::AddScan(const LidarScan& scan, const Pose2& odometry) {

@@ -70,12 +70,13 @@ class LidarLocaliser final : public EgoPoseSource {
   // the static ones). LocaliseScan runs steps 1-6 and records the estimate; MapScan inserts
   // returns (vehicle frame) at the estimate of the last LocaliseScan: `hits` end in occupied
   // cells, `free_ends` only clear space, `empty_ends` (beams that saw nothing) clear it up to
-  // the first occupied cell (LocalMap::InsertScan). A MapScan without an accepted LocaliseScan
-  // before it does nothing.
+  // the first occupied cell, `bare_hits` mark their cells only (LocalMap::InsertScan). A
+  // MapScan without an accepted LocaliseScan before it does nothing.
   std::optional<EgoState> LocaliseScan(const LidarScan& scan, const Pose2& odometry);
   void MapScan(const LidarScan& scan, std::span<const Eigen::Vector2d> hits,
                std::span<const Eigen::Vector2d> free_ends,
-               std::span<const Eigen::Vector2d> empty_ends = {});
+               std::span<const Eigen::Vector2d> empty_ends = {},
+               std::span<const Eigen::Vector2d> bare_hits = {});
 
   // The latest scan estimate at or before t composed with the odometry since (interpolated
   // between readings; held for up to max_extrapolation_s past the newest). The covariance is
