@@ -226,10 +226,14 @@ RiskAssessment AssessRisk(const EgoInput& ego, const std::vector<ObjectInput>& o
   const FootprintTrack ego_track = PredictEgo(ego, options);
   const std::vector<Eigen::Vector4d> normals =
       DrawStandardNormals(options.collision_samples, DeriveSeed(options.seed, "risk", 0));
-  for (const ObjectInput& object : objects) {
+  for (ObjectInput object : objects) {
     if (!Valid(object)) {
       ++out.dropped;
       continue;
+    }
+    if (object.object_class == ObjectClass::kUnknown &&
+        object.velocity_mps.norm() >= options.unknown_as_car_speed_mps) {
+      object.object_class = ObjectClass::kCar;
     }
     SamplingInput sampling{object.position_covariance, object.velocity_covariance};
     const bool walks = !MovesLikeAVehicle(object.object_class) &&

@@ -76,6 +76,33 @@ TEST(RiskAssessmentTest, HeadOnCarTtcIsGapOverClosingSpeed) {
   EXPECT_NEAR(*circles.objects[0].ttc_s, (60.0 - reach) / 20.0, 1e-9);
 }
 
+// An unknown object as fast as a car is predicted as one: head on at 10 m/s its TTC is the
+// box gap's, as a car's; at 5 m/s it stays a circle of unknown_radius_m moving straight.
+TEST(RiskAssessmentTest, AnUnknownObjectAsFastAsACarIsPredictedAsOne) {
+  const RiskOptions o = NoGrowth();
+  EgoInput ego;
+  ego.speed_mps = 10.0;
+  const ObjectInput fast = Object(ObjectClass::kUnknown, {60.0, 0.0}, {-10.0, 0.0});
+  const RiskAssessment as_car = AssessRisk(ego, {fast}, o);
+  ASSERT_TRUE(as_car.earliest.has_value());
+  EXPECT_NEAR(*as_car.objects[0].ttc_s,
+              (60.0 - 0.5 * o.ego_length_m - 0.5 * o.car_length_m) / 20.0, 1e-9);
+  const ObjectInput slow = Object(ObjectClass::kUnknown, {60.0, 0.0}, {-5.0, 0.0});
+  const RiskAssessment round = AssessRisk(ego, {slow}, o);
+  ASSERT_TRUE(round.earliest.has_value());
+  // The circle meets the ego's box at its front: gap 60 - half the ego's length - the radius,
+  // closed at 15 m/s, to the 0.1 s step the collision search resolves.
+  const double circle_ttc = (60.0 - 0.5 * o.ego_length_m - o.unknown_radius_m) / 15.0;
+  EXPECT_NEAR(*round.objects[0].ttc_s, circle_ttc, o.step_s);
+  // With the option at infinity the fast one stays round too.
+  RiskOptions never = o;
+  never.unknown_as_car_speed_mps = std::numeric_limits<double>::infinity();
+  const RiskAssessment kept_round = AssessRisk(ego, {fast}, never);
+  ASSERT_TRUE(kept_round.earliest.has_value());
+  EXPECT_NEAR(*kept_round.objects[0].ttc_s,
+              (60.0 - 0.5 * o.ego_length_m - o.unknown_radius_m) / 20.0, o.step_s);
+}
+
 // The circles' false alarm: a car passing in the next lane (3.5 m between the lanes' centres,
 // 1.65 m between the sides). Boxes see no collision; circles of half the diagonals do.
 TEST(RiskAssessmentTest, BoxesLetACarPassInTheNextLane) {

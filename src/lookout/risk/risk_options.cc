@@ -61,6 +61,8 @@ void RiskOptions::Validate(const std::string& source) const {
   Require(Positive(cyclist_width_m), source, "cyclist_width_m", "must be > 0");
   Require(Positive(pedestrian_radius_m), source, "pedestrian_radius_m", "must be > 0");
   Require(Positive(unknown_radius_m), source, "unknown_radius_m", "must be > 0");
+  Require(!std::isnan(unknown_as_car_speed_mps) && unknown_as_car_speed_mps >= 0.0, source,
+          "unknown_as_car_speed_mps", "must be >= 0 (infinity: never)");
   Require(NonNegative(min_heading_speed_mps), source, "min_heading_speed_mps", "must be >= 0");
   Require(NonNegative(covariance_sigmas), source, "covariance_sigmas", "must be >= 0");
   Require(NonNegative(growth_per_metre), source, "growth_per_metre", "must be >= 0");
