@@ -24,21 +24,35 @@ std::size_t ArgMax(const std::array<double, kAllObjectClasses.size()>& values) {
   return best;
 }
 
-// Half the object's extent behind its seen side, along the side's normal.
-double DepthBehindSide(ObjectClass c, double side_length_m, const DetectionOptions& o) {
+// Where an object's centre lies behind its seen side, along the side's normal: a depth and its
+// variance. A known class: half its box's extent there (the long side shows when the segment is
+// nearer the length than the width), its spread in centre_offset_sigma_m. An object of unknown
+// class (a lidar-only segment) may be anything from a walker, whose centre is on the side, to a
+// car, whose centre lies half its box behind: uniform between the two, so mean h / 2 and
+// variance h^2 / 12 for the car's depth h. Before, such an object's centre was its seen side:
+// a car seen head-on was tracked 2.25 m ahead of its centre, and the camera's "car" then fell
+// outside that track's gate and started a second track (left-turn-across-path).
+struct CentreDepth {
+  double depth_m = 0.0;
+  double variance_m2 = 0.0;
+};
+
+CentreDepth DepthBehindSide(ObjectClass c, double side_length_m, const DetectionOptions& o) {
   const auto box = [&](double length, double width) {
-    // The long side shows when the segment is nearer the length than the width.
     return side_length_m >= 0.5 * (length + width) ? 0.5 * width : 0.5 * length;
   };
   switch (c) {
-    case ObjectClass::kPedestrian: return o.pedestrian_radius_m;
-    case ObjectClass::kCyclist: return box(o.cyclist_length_m, o.cyclist_width_m);
-    case ObjectClass::kCar: return box(o.car_length_m, o.car_width_m);
-    case ObjectClass::kTruck: return box(o.truck_length_m, o.truck_width_m);
-    case ObjectClass::kPole:
-    case ObjectClass::kUnknown: return 0.0;
+    case ObjectClass::kPedestrian: return {o.pedestrian_radius_m, 0.0};
+    case ObjectClass::kCyclist: return {box(o.cyclist_length_m, o.cyclist_width_m), 0.0};
+    case ObjectClass::kCar: return {box(o.car_length_m, o.car_width_m), 0.0};
+    case ObjectClass::kTruck: return {box(o.truck_length_m, o.truck_width_m), 0.0};
+    case ObjectClass::kPole: return {};
+    case ObjectClass::kUnknown: {
+      const double h = box(o.car_length_m, o.car_width_m);
+      return {0.5 * h, h * h / 12.0};
+    }
   }
-  return 0.0;
+  return {};
 }
 
 }  // namespace
@@ -188,18 +202,20 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
       away = normal;
     }
     const double n = away.norm();
-    const Eigen::Vector2d centre =
-        n > 1e-9 ? Eigen::Vector2d(o.point_m + DepthBehindSide(c, side, options) * away / n)
-                 : o.point_m;
+    const CentreDepth depth = DepthBehindSide(c, side, options);
+    const Eigen::Vector2d normal = n > 1e-9 ? Eigen::Vector2d(away / n) : Eigen::Vector2d::Zero();
+    const Eigen::Vector2d centre = o.point_m + depth.depth_m * normal;
     tracking::Detection d;
     d.position_m = frame.ego_pose * centre;
     if (lidar_only && DepthInsideBuildings(buildings, d.position_m) > options.building_margin_m) {
       if (in_buildings) ++*in_buildings;
       continue;
     }
-    d.covariance = r * o.point_covariance * r.transpose() +
-                   options.centre_offset_sigma_m * options.centre_offset_sigma_m *
-                       Eigen::Matrix2d::Identity();
+    const Eigen::Matrix2d in_vehicle = o.point_covariance +
+                                       depth.variance_m2 * normal * normal.transpose();
+    d.covariance = r * in_vehicle * r.transpose() + options.centre_offset_sigma_m *
+                                                        options.centre_offset_sigma_m *
+                                                        Eigen::Matrix2d::Identity();
     d.object_class = c;
     d.sensors = o.sensor_count;
     if (o.stereo_id) {

@@ -67,6 +67,34 @@ TEST(DetectionsFromFusedObjectsTest, CentreIsHalfTheDepthBehindTheSeenSide) {
   EXPECT_EQ(walker[0].sensors, 2);
 }
 
+// A lidar-only object of unknown class may be a walker (centre on its side) or a car (half a
+// box behind): its centre is half the car's depth behind, with the variance of a uniform depth
+// along the side's normal, and across it the covariance it had.
+TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectsCentreIsUncertainInDepth) {
+  const DetectionOptions options;
+  fusion::FusedObject head_on = Object(ObjectClass::kUnknown, {20.0, 0.9}, {20.0, -0.9});
+  head_on.stereo_id.reset();
+  head_on.sensor_count = 1;
+  const auto d = DetectionsFromFusedObjects(Frame(0, {head_on}), options);
+  ASSERT_EQ(d.size(), 1u);
+  const double h = 0.5 * options.car_length_m;  // the seen side is a car's front: 2.25 m deep
+  EXPECT_NEAR(d[0].position_m.x(), 20.0 + 0.5 * h, 1e-12);
+  EXPECT_NEAR(d[0].position_m.y(), 0.0, 1e-12);
+  const double offset = options.centre_offset_sigma_m * options.centre_offset_sigma_m;
+  EXPECT_NEAR(d[0].covariance(0, 0), 0.01 + h * h / 12.0 + offset, 1e-12);
+  EXPECT_NEAR(d[0].covariance(1, 1), 0.01 + offset, 1e-12);
+  EXPECT_NEAR(d[0].covariance(0, 1), 0.0, 1e-12);
+  // Broadside (a side longer than a car's front), half a width deep: 0.45 m, variance 0.9^2/12.
+  fusion::FusedObject side = Object(ObjectClass::kUnknown, {20.0, -2.25}, {20.0, 2.25});
+  side.stereo_id.reset();
+  side.sensor_count = 1;
+  const auto s = DetectionsFromFusedObjects(Frame(0, {side}), options);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_NEAR(s[0].position_m.x(), 20.0 + 0.25 * options.car_width_m, 1e-12);
+  EXPECT_NEAR(s[0].covariance(0, 0),
+              0.01 + 0.25 * options.car_width_m * options.car_width_m / 12.0 + offset, 1e-12);
+}
+
 // Detections are in the odometry frame: the frame's ego pose carries point and covariance.
 TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
   fusion::FusedObject o = Object(ObjectClass::kUnknown, {10.0, 0.0}, {10.0, 0.0});
@@ -76,10 +104,13 @@ TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
   const Pose2 ego(5.0, -3.0, kPi / 2.0);
   const auto d = DetectionsFromFusedObjects(Frame(0, {o}, ego), options);
   ASSERT_EQ(d.size(), 1u);
+  // Unknown: the centre 1.125 m behind the point along the line of sight (vehicle x), with
+  // variance 2.25^2 / 12 there (AnUnknownObjectsCentreIsUncertainInDepth).
+  const double depth = 1.125, depth_variance = 2.25 * 2.25 / 12.0;
   EXPECT_NEAR(d[0].position_m.x(), 5.0, 1e-12);
-  EXPECT_NEAR(d[0].position_m.y(), 7.0, 1e-12);
+  EXPECT_NEAR(d[0].position_m.y(), 7.0 + depth, 1e-12);
   EXPECT_NEAR(d[0].covariance(0, 0), 1.0, 1e-12);  // the long axis now lies along y
-  EXPECT_NEAR(d[0].covariance(1, 1), 4.0, 1e-12);
+  EXPECT_NEAR(d[0].covariance(1, 1), 4.0 + depth_variance, 1e-12);
 }
 
 TEST(DetectionsFromFusedObjectsTest, LeavesOutLidarOnlyObjectsInsideABuilding) {
