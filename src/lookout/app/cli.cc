@@ -100,7 +100,7 @@ void PrintSummary(const RunResult& r, const std::string& source, const std::stri
 // docs/risk.md).
 struct PipelineChoices {
   std::string ego_pose = "odometry";
-  std::string lidar_objects = "grid";
+  std::string lidar_objects = "segmentation";
   std::string stereo_class = "on";
   std::string tracker = "mht";
   std::string risk_shape = "boxes";
@@ -112,8 +112,8 @@ struct PipelineChoices {
     o.stereo_class.enabled = stereo_class == "on";
     o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
                                         : EgoPoseMode::kLidarLocalisation;
-    o.lidar_objects = lidar_objects == "segmentation" ? LidarObjectSource::kSegmentation
-                                                      : LidarObjectSource::kGrid;
+    o.lidar_objects = lidar_objects == "grid" ? LidarObjectSource::kGrid
+                                              : LidarObjectSource::kSegmentation;
     // The names are checked by CLI11 (IsMember) before they get here.
     o.tracking_options.tracker = *ParseTrackerKind(tracker);
     o.risk_options.risk.shape = *risk::ParseCollisionShape(risk_shape);
@@ -131,8 +131,8 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
       ->check(CLI::IsMember({"lidar", "odometry"}));
   command
       ->add_option("--lidar-objects", choices.lidar_objects,
-                   "Lidar objects for fusion: grid (rigid clusters) or segmentation (the scan's "
-                   "segments)")
+                   "Lidar objects for fusion: segmentation (the scan's segments, the default) or "
+                   "grid (the grid's rigid clusters)")
       ->check(CLI::IsMember({"grid", "segmentation"}));
   command
       ->add_option("--stereo-class", choices.stereo_class,

@@ -47,7 +47,10 @@ struct PipelineOptions {
   // Dead reckoning by default: on the catalogue the grid's velocities are better with its
   // smoother scan-to-scan motion (docs/lidar-chain.md).
   EgoPoseMode ego_pose = EgoPoseMode::kDeadReckoning;
-  LidarObjectSource lidar_objects = LidarObjectSource::kGrid;
+  // The segmentation's objects by default: with them the tracker and the risk stage reach
+  // their goals on more scenarios (docs/lidar-chain.md, 2026-12-03); the grid's objects do not
+  // yet hold fast vehicles (docs/grid.md).
+  LidarObjectSource lidar_objects = LidarObjectSource::kSegmentation;
   // Lidar/stereo fusion of each cycle's lidar objects with the latest stereo frame
   // (docs/fusion.md); needs a source of lidar objects.
   bool fusion = true;
@@ -110,7 +113,7 @@ class Pipeline {
   std::vector<std::unique_ptr<Stage>> stages_;
   const GridStage* grid_ = nullptr;  // owned by stages_
   const LidarChainStage* lidar_chain_ = nullptr;  // owned by stages_
-  LidarObjectSource object_source_ = LidarObjectSource::kGrid;
+  LidarObjectSource object_source_ = LidarObjectSource::kSegmentation;
   std::optional<fusion::FusionEngine> fusion_;
   StereoFrame latest_stereo_;
   bool stereo_received_ = false;

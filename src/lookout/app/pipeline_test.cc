@@ -21,6 +21,7 @@ TEST(PipelineOptions, AChoiceThatNeedsAPartThatIsOffIsRefused) {
   o.lidar_objects = LidarObjectSource::kSegmentation;
   EXPECT_THROW(Pipeline{o}, InputError);
   o = {};
+  o.lidar_objects = LidarObjectSource::kGrid;
   o.grid = false;
   EXPECT_THROW(o.Validate(), InputError);  // fusion of the grid's objects without a grid
   o.fusion = false;
