@@ -112,8 +112,8 @@ struct PipelineChoices {
     o.stereo_class.enabled = stereo_class == "on";
     o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
                                         : EgoPoseMode::kLidarLocalisation;
-    o.lidar_objects = lidar_objects == "grid" ? LidarObjectSource::kGrid
-                                              : LidarObjectSource::kSegmentation;
+    o.lidar_objects =
+        lidar_objects == "grid" ? LidarObjectSource::kGrid : LidarObjectSource::kSegmentation;
     // The names are checked by CLI11 (IsMember) before they get here.
     o.tracking_options.tracker = *ParseTrackerKind(tracker);
     o.risk_options.risk.shape = *risk::ParseCollisionShape(risk_shape);

@@ -25,7 +25,9 @@ const lidar::SlamOptions& Validated(const lidar::LidarChainOptions& options) {
 
 LidarChainStage::LidarChainStage(const lidar::LidarChainOptions& options,
                                  const DeadReckoningOptions& odometry)
-    : options_(options), odometry_(odometry), localiser_(Validated(options)) {}
+    : options_(options), odometry_(odometry), localiser_(Validated(options)) {
+  if (options_.far_map_enabled) far_map_.emplace(options_.far_map);
+}
 
 void LidarChainStage::OnOdometry(const EgoOdometry& odometry) {
   if (!odometry_.Add(odometry)) return;
@@ -52,6 +54,10 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
   }
   const Clock::time_point localised = Clock::now();
   hits_ = lidar::ClassifyHits(localiser_.map(), scan, state->pose, options_.hits);
+  if (far_map_) {
+    lidar::ClassifyFarHits(*far_map_, scan, state->pose, options_.localiser.map.max_insert_range_m,
+                           options_.far_static_tolerance_m, options_.hits, hits_);
+  }
   no_returns_ += hits_.no_return_count;
   const Clock::time_point classified = Clock::now();
   const std::vector<lidar::ScanCluster> clusters =
@@ -71,7 +77,7 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
       for (std::size_t i : c.beams) unmapped[i] = true;
     }
   }
-  MapScan(scan, unmapped);
+  MapScan(scan, state->pose, unmapped);
   const Clock::time_point mapped = Clock::now();
   localise_ms_.push_back(MsBetween(start, localised));
   hits_ms_.push_back(MsBetween(localised, classified) + MsBetween(segmented, mapped));
@@ -80,7 +86,8 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
   last_state_ = state;
 }
 
-void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& unmapped) {
+void LidarChainStage::MapScan(const LidarScan& scan, const Pose2& pose,
+                              const std::vector<bool>& unmapped) {
   const std::size_t n = scan.ranges_m.size();
   const double min_range = options_.hits.min_range_m;
   // How far each beam may clear: up to the nearer of its neighbours' returns, less the margin
@@ -103,6 +110,7 @@ void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& un
   std::vector<Eigen::Vector2d> bare_hits;
   std::vector<Eigen::Vector2d> free_ends;
   std::vector<Eigen::Vector2d> empty_ends;
+  std::vector<Eigen::Vector2d> far_empty_ends;  // the far map's reach, not no_return_clear_m
   hits.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const lidar::HitClass k = hits_.beam[i];
@@ -111,6 +119,11 @@ void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& un
         double r = std::min(options_.no_return_clear_m, clear_to[i]);
         if (scan.max_range_m > 0.0) r = std::min(r, scan.max_range_m);
         if (r > 0.0) empty_ends.push_back(along(i, r));
+        if (far_map_) {
+          double far = std::min(options_.far_map.max_insert_range_m, clear_to[i]);
+          if (scan.max_range_m > 0.0) far = std::min(far, scan.max_range_m);
+          if (far > 0.0) far_empty_ends.push_back(along(i, far));
+        }
       }
       continue;
     }
@@ -128,6 +141,13 @@ void LidarChainStage::MapScan(const LidarScan& scan, const std::vector<bool>& un
     }
   }
   localiser_.MapScan(scan, hits, free_ends, empty_ends, bare_hits);
+  if (!far_map_) return;
+  const auto to_map = [&pose](std::vector<Eigen::Vector2d>& points) {
+    for (Eigen::Vector2d& p : points) p = pose * p;
+  };
+  for (auto* points : {&hits, &free_ends, &far_empty_ends, &bare_hits}) to_map(*points);
+  far_map_->RecentreOn(pose.translation);
+  far_map_->InsertScan(pose * scan.mount.translation, hits, free_ends, far_empty_ends, bare_hits);
 }
 
 }  // namespace lookout::app

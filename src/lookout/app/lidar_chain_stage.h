@@ -26,6 +26,7 @@
 #include "lookout/core/dead_reckoning.h"
 #include "lookout/lidar/hit_classification.h"
 #include "lookout/lidar/lidar_chain_options.h"
+#include "lookout/lidar/local_map.h"
 #include "lookout/lidar/localiser.h"
 #include "lookout/lidar/scan_segmentation.h"
 
@@ -45,6 +46,7 @@ class LidarChainStage : public Stage {
   const EgoPoseSource& localisation() const { return localiser_; }
   const EgoPoseSource& dead_reckoning() const { return odometry_; }
   const lidar::LidarLocaliser& localiser() const { return localiser_; }
+  const lidar::LocalMap* far_map() const { return far_map_ ? &*far_map_ : nullptr; }
 
   // The stamp of the last scan processed, its localised state, the class of each of its beams
   // and its objects; nullopt / empty before the first.
@@ -63,12 +65,15 @@ class LidarChainStage : public Stage {
   std::int64_t no_returns() const { return no_returns_; }  // over every scan processed
 
  private:
-  // `unmapped[i]`: beam i only clears space (its segment is dynamic); empty: none.
-  void MapScan(const LidarScan& scan, const std::vector<bool>& unmapped);
+  // `unmapped[i]`: beam i only clears space (its segment is dynamic); empty: none. Into the
+  // localiser's map and the far map, at the scan's localised pose.
+  void MapScan(const LidarScan& scan, const Pose2& pose, const std::vector<bool>& unmapped);
 
   lidar::LidarChainOptions options_;
   DeadReckoning odometry_;
   lidar::LidarLocaliser localiser_;
+  // Beyond the localiser's map, for the classification of far returns (far_map_enabled).
+  std::optional<lidar::LocalMap> far_map_;
   std::optional<TimeNs> last_stamp_;
   std::optional<EgoState> last_state_;
   lidar::ScanHitClasses hits_;

@@ -211,8 +211,8 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
       if (in_buildings) ++*in_buildings;
       continue;
     }
-    const Eigen::Matrix2d in_vehicle = o.point_covariance +
-                                       depth.variance_m2 * normal * normal.transpose();
+    const Eigen::Matrix2d in_vehicle =
+        o.point_covariance + depth.variance_m2 * normal * normal.transpose();
     d.covariance = r * in_vehicle * r.transpose() + options.centre_offset_sigma_m *
                                                         options.centre_offset_sigma_m *
                                                         Eigen::Matrix2d::Identity();

@@ -36,6 +36,18 @@ Eigen::Vector2d ReturnPoint(const LidarScan& scan, std::size_t i) {
   return scan.mount * Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
 }
 
+namespace {
+
+// The rule of the header for one return whose map cell is c.
+HitClass ClassOfCell(const LocalMap& map, const CellIndex& c, float tolerance,
+                     float free_log_odds) {
+  if (map.FieldDistance(c) <= tolerance || map.Occupied(c)) return HitClass::kStatic;
+  if (map.LogOdds(c) <= free_log_odds) return HitClass::kDynamic;
+  return HitClass::kUnknown;
+}
+
+}  // namespace
+
 ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Pose2& vehicle_pose,
                             const HitClassificationOptions& options) {
   ScanHitClasses out;
@@ -49,12 +61,7 @@ ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Po
       continue;
     }
     const CellIndex c = map.CellOf(vehicle_pose * ReturnPoint(scan, i));
-    HitClass k = HitClass::kUnknown;
-    if (map.FieldDistance(c) <= tolerance || map.Occupied(c)) {
-      k = HitClass::kStatic;
-    } else if (map.LogOdds(c) <= options.free_log_odds) {
-      k = HitClass::kDynamic;
-    }
+    const HitClass k = ClassOfCell(map, c, tolerance, options.free_log_odds);
     out.beam[i] = k;
     switch (k) {
       case HitClass::kStatic: ++out.static_count; break;
@@ -63,6 +70,22 @@ ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Po
     }
   }
   return out;
+}
+
+void ClassifyFarHits(const LocalMap& far_map, const LidarScan& scan, const Pose2& vehicle_pose,
+                     double from_range_m, double static_tolerance_m,
+                     const HitClassificationOptions& options, ScanHitClasses& classes) {
+  const auto tolerance = static_cast<float>(static_tolerance_m + 1e-6);
+  for (std::size_t i = 0; i < classes.beam.size() && i < scan.ranges_m.size(); ++i) {
+    if (classes.beam[i] != HitClass::kUnknown) continue;
+    if (static_cast<double>(scan.ranges_m[i]) <= from_range_m) continue;
+    const CellIndex c = far_map.CellOf(vehicle_pose * ReturnPoint(scan, i));
+    const HitClass k = ClassOfCell(far_map, c, tolerance, options.free_log_odds);
+    if (k == HitClass::kUnknown) continue;
+    classes.beam[i] = k;
+    --classes.unknown_count;
+    ++(k == HitClass::kStatic ? classes.static_count : classes.dynamic_count);
+  }
 }
 
 }  // namespace lookout::lidar

@@ -74,4 +74,11 @@ struct ScanHitClasses {
 ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Pose2& vehicle_pose,
                             const HitClassificationOptions& options);
 
+// Returns of `classes` still unknown whose range is beyond `from_range_m` are classified again
+// against `far_map` (a coarser map of the same scans that reaches further), by the same rule
+// with `static_tolerance_m`; the counts follow. Pure apart from `classes`.
+void ClassifyFarHits(const LocalMap& far_map, const LidarScan& scan, const Pose2& vehicle_pose,
+                     double from_range_m, double static_tolerance_m,
+                     const HitClassificationOptions& options, ScanHitClasses& classes);
+
 }  // namespace lookout::lidar

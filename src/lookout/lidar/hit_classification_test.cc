@@ -113,6 +113,42 @@ TEST(HitClassification, BeamsThatAreNotReturnsAreSkippedAndCounted) {
   for (double d : {1.0, 2.0, 3.0, 4.0, 5.0}) EXPECT_EQ(c.beam[Beam(d)], HitClass::kNoReturn) << d;
 }
 
+// The far map: 0.2 m cells, a wall at x = 100 m seen five times. Returns beyond 80 m that the
+// fine map left unknown are classified against it; nearer ones, and returns the fine map
+// already classified, keep their class; the counts follow.
+TEST(HitClassification, FarReturnsAreClassifiedAgainstTheFarMap) {
+  MapOptions o;
+  o.cell_size_m = 0.2;
+  o.window_cells = 2048;
+  o.max_insert_range_m = 150.0;
+  LocalMap far(o);
+  std::vector<Eigen::Vector2d> wall;
+  for (double a = -5.0; a <= 5.0; a += 0.1)
+    wall.emplace_back(100.0, 100.0 * std::tan(a * kPi / 180.0));
+  for (int i = 0; i < 5; ++i) far.InsertScan(Eigen::Vector2d::Zero(), wall, {});
+  LidarScan scan = ScanOf({{100.0f, 0.0},    // on the wall: static
+                           {90.0f, 1.0},     // before it, seen free: dynamic
+                           {120.0f, 2.0},    // behind it: unknown
+                           {50.0f, 3.0},     // within the fine map's reach: left alone
+                           {95.0f, -1.0}});  // already static by the fine map
+  scan.max_range_m = 150.0;
+  ScanHitClasses c;
+  c.beam.assign(scan.ranges_m.size(), HitClass::kNoReturn);
+  for (double d : {0.0, 1.0, 2.0, 3.0}) c.beam[Beam(d)] = HitClass::kUnknown;
+  c.beam[Beam(-1.0)] = HitClass::kStatic;
+  c.unknown_count = 4;
+  c.static_count = 1;
+  ClassifyFarHits(far, scan, Pose2(), 80.0, 0.3, HitClassificationOptions{}, c);
+  EXPECT_EQ(c.beam[Beam(0.0)], HitClass::kStatic);
+  EXPECT_EQ(c.beam[Beam(1.0)], HitClass::kDynamic);
+  EXPECT_EQ(c.beam[Beam(2.0)], HitClass::kUnknown);
+  EXPECT_EQ(c.beam[Beam(3.0)], HitClass::kUnknown);
+  EXPECT_EQ(c.beam[Beam(-1.0)], HitClass::kStatic);
+  EXPECT_EQ(c.static_count, 2);
+  EXPECT_EQ(c.dynamic_count, 1);
+  EXPECT_EQ(c.unknown_count, 2);
+}
+
 TEST(HitClassification, OptionsNameTheBadField) {
   HitClassificationOptions o;
   o.free_log_odds = 0.2f;

@@ -30,6 +30,15 @@ SlamOptions VehicleLocaliserOptions() {
   return o;
 }
 
+MapOptions FarMapOptions() {
+  MapOptions o;
+  o.cell_size_m = 0.2;
+  o.window_cells = 2048;
+  o.recentre_share = 0.125;
+  o.max_insert_range_m = 150.0;
+  return o;
+}
+
 void LidarChainOptions::Validate(const std::string& source) const {
   localiser.Validate(source);
   hits.Validate(source);
@@ -41,6 +50,14 @@ void LidarChainOptions::Validate(const std::string& source) const {
   }
   if (!std::isfinite(dynamic_ray_margin_m) || dynamic_ray_margin_m < 0.0) {
     throw InputError(source, 0, "dynamic_ray_margin_m", "must be finite and >= 0");
+  }
+  if (far_map_enabled) {
+    far_map.Validate(source + ": far_map");
+    if (!std::isfinite(far_static_tolerance_m) || far_static_tolerance_m < 0.0 ||
+        far_static_tolerance_m > far_map.field_max_distance_m) {
+      throw InputError(source, 0, "far_static_tolerance_m",
+                       "must be in [0, far_map.field_max_distance_m]");
+    }
   }
   if (!std::isfinite(neighbour_clear_margin_m)) {
     throw InputError(source, 0, "neighbour_clear_margin_m", "must be finite");

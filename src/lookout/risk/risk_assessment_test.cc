@@ -85,8 +85,8 @@ TEST(RiskAssessmentTest, AnUnknownObjectAsFastAsACarIsPredictedAsOne) {
   const ObjectInput fast = Object(ObjectClass::kUnknown, {60.0, 0.0}, {-10.0, 0.0});
   const RiskAssessment as_car = AssessRisk(ego, {fast}, o);
   ASSERT_TRUE(as_car.earliest.has_value());
-  EXPECT_NEAR(*as_car.objects[0].ttc_s,
-              (60.0 - 0.5 * o.ego_length_m - 0.5 * o.car_length_m) / 20.0, 1e-9);
+  EXPECT_NEAR(*as_car.objects[0].ttc_s, (60.0 - 0.5 * o.ego_length_m - 0.5 * o.car_length_m) / 20.0,
+              1e-9);
   const ObjectInput slow = Object(ObjectClass::kUnknown, {60.0, 0.0}, {-5.0, 0.0});
   const RiskAssessment round = AssessRisk(ego, {slow}, o);
   ASSERT_TRUE(round.earliest.has_value());
