@@ -39,11 +39,13 @@ std::size_t FeedOdometry(LidarChainStage& stage, const sim::SensorLog& log, std:
 }
 
 // Argument: 1 with the default options, 0 with beams that saw nothing clearing nothing
-// (no_return_clear_m = 0, as `lookout replay` runs it): what the empty beams' rays cost.
+// (no_return_clear_m = 0, as `lookout replay` runs it): what the empty beams' rays cost; 2
+// without the far map (far_map_enabled = false): what the far map costs.
 void BM_LidarChainScan(benchmark::State& state) {
   const sim::SensorLog& log = Log();
   lidar::LidarChainOptions options;
   if (state.range(0) == 0) options.no_return_clear_m = 0.0;
+  if (state.range(0) == 2) options.far_map_enabled = false;
   auto stage = std::make_unique<LidarChainStage>(options);
   std::size_t k = 0, o = 0;
   for (auto _ : state) {
@@ -60,7 +62,7 @@ void BM_LidarChainScan(benchmark::State& state) {
   state.counters["scans_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_LidarChainScan)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LidarChainScan)->Arg(1)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_LocaliseScan(benchmark::State& state) {
   const sim::SensorLog& log = Log();

@@ -36,6 +36,9 @@ MapOptions FarMapOptions() {
   o.window_cells = 2048;
   o.recentre_share = 0.125;
   o.max_insert_range_m = 150.0;
+  // Only returns beyond the fine map's 80 m read it: its near cells would cost rays and
+  // nothing else (10 m of margin for the field around 80 m).
+  o.min_insert_range_m = 70.0;
   return o;
 }
 

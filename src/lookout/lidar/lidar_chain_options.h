@@ -21,8 +21,8 @@ namespace lookout::lidar {
 // logs' metre and half radian.
 SlamOptions VehicleLocaliserOptions();
 
-// The far map: the same scans in 0.2 m cells out to the scanner's 150 m, over a 410 m window
-// that recentres every 51 m (so 154 m and more are always mapped ahead). Only the
+// The far map: the same scans in 0.2 m cells from 70 m out to the scanner's 150 m, over a 410 m
+// window that recentres every 51 m (so 154 m and more are always mapped ahead). Only the
 // classification of returns beyond the localiser's map reads it: a car at 20 m/s closing on
 // the ego is 100 m away 3 s before it arrives. 42 MB, against the fine map's 168 MB that 150 m
 // at 0.05 m would take four times over.

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 
 namespace lookout::lidar {
 
@@ -198,7 +199,16 @@ void LocalMap::InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::
   }
   became_occupied_.clear();
   became_free_.clear();
-  const CellIndex from = CellOf(origin);
+  const double min_range = options_.min_insert_range_m;
+  // Where a ray to p begins: the origin's cell, or its point at min_insert_range_m; nullopt
+  // when p is nearer than that (the ray updates nothing).
+  const auto start = [&](const Eigen::Vector2d& p) -> std::optional<CellIndex> {
+    if (min_range <= 0.0) return CellOf(origin);
+    const Eigen::Vector2d d = p - origin;
+    const double r = d.norm();
+    if (r <= min_range) return std::nullopt;
+    return CellOf(origin + d * (min_range / r));
+  };
 
   // Hits first (see the header): a cell hit in this scan is then stamped and no miss of the
   // same scan can lower it.
@@ -207,24 +217,23 @@ void LocalMap::InsertScan(const Eigen::Vector2d& origin, std::span<const Eigen::
       bool clipped = false;
       const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
       const CellIndex c = CellOf(end);
-      if (!clipped && InWindow(c)) UpdateCell(c, true);
+      if (!clipped && InWindow(c) && start(p)) UpdateCell(c, true);
     }
   }
-  for (const Eigen::Vector2d& p : hits) {
-    bool clipped = false;
-    const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
-    Traverse(from, CellOf(end), !clipped);
-  }
-  for (const Eigen::Vector2d& p : free_ends) {
-    bool clipped = false;
-    const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
-    Traverse(from, CellOf(end), false);
-  }
-  for (const Eigen::Vector2d& p : empty_ends) {
-    bool clipped = false;
-    const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
-    Traverse(from, CellOf(end), false, true);
-  }
+  // The rays: hits end on their (already updated) cell, free ends clear through theirs, empty
+  // beams stop at the first cell occupied as the scan began.
+  const auto rays = [&](std::span<const Eigen::Vector2d> ends, bool hit, bool stop_at_occupied) {
+    for (const Eigen::Vector2d& p : ends) {
+      bool clipped = false;
+      const Eigen::Vector2d end = ClipToRange(origin, p, &clipped);
+      if (const std::optional<CellIndex> from = start(end)) {
+        Traverse(*from, CellOf(end), hit && !clipped, stop_at_occupied);
+      }
+    }
+  };
+  rays(hits, true, false);
+  rays(free_ends, false, false);
+  rays(empty_ends, false, true);
 
   for (const CellIndex& c : became_occupied_) LowerFieldAround(c);
   for (const CellIndex& c : became_free_) RepairFieldAround(c);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lookout/core/input_error.h"
 #include "lookout/core/pose2.h"
 #include "lookout/core/random.h"
 
@@ -117,6 +118,24 @@ TEST(LocalMap, HitsBeyondInsertRangeOnlyClear) {
   EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({4.05, 0.05})), 0.0f);
   EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({1.55, 0.05})), o.log_odds_miss);
   EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), 0.0f);
+}
+
+// A map with a minimum insert range updates nothing nearer than it: a ray's cells from there
+// on, a hit beyond it; a hit nearer is left out with its whole ray.
+TEST(LocalMap, NothingNearerThanTheMinimumInsertRangeIsUpdated) {
+  MapOptions o = SmallMap();
+  o.min_insert_range_m = 2.0;
+  LocalMap map(o);
+  const Eigen::Vector2d origin(0.05, 0.05);
+  const std::vector<Eigen::Vector2d> hits = {{3.05, 0.05}, {0.05, 1.05}};
+  map.InsertScan(origin, hits, {});
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({3.05, 0.05})), o.log_odds_hit);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({2.55, 0.05})), o.log_odds_miss);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({1.05, 0.05})), 0.0f);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({0.05, 1.05})), 0.0f);
+  EXPECT_FLOAT_EQ(map.LogOdds(map.CellOf({0.05, 0.55})), 0.0f);
+  o.min_insert_range_m = o.max_insert_range_m;
+  EXPECT_THROW(o.Validate(), InputError);
 }
 
 // A bare hit marks its cell and clears nothing: its ray is the caller's (the lidar chain clears

@@ -39,6 +39,9 @@ void MapOptions::Validate(const std::string& source) const {
           "map.field_max_distance_m", "must be > 0 and at most 50 cells");
   Require(Positive(max_insert_range_m), source, "map.max_insert_range_m",
           "must be finite and > 0");
+  Require(std::isfinite(min_insert_range_m) && min_insert_range_m >= 0.0 &&
+              min_insert_range_m < max_insert_range_m,
+          source, "map.min_insert_range_m", "must be in [0, max_insert_range_m)");
 }
 
 void MotionModelOptions::Validate(const std::string& source) const {

@@ -31,6 +31,10 @@ struct MapOptions {
   double field_max_distance_m = 0.6;
   // Beams are inserted up to this range (a hit further away only clears space up to it).
   double max_insert_range_m = 40.0;
+  // ... and from this range on: nearer, a ray updates nothing (a hit there is left out). For a
+  // map that only the far returns read (the lidar chain's far map), whose near part another
+  // map holds.
+  double min_insert_range_m = 0.0;
 
   void Validate(const std::string& source = "lidar map options") const;
 };
