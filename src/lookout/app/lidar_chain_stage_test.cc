@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include "lookout/io/scenario_loader.h"
 #include "lookout/lidar/lidar_chain_options.h"
@@ -113,19 +114,10 @@ TEST(LidarChainStage, EmptyBeamsClearTheirRaysUpToTheClearRange) {
   EXPECT_EQ(stage.last_hits().beam[10], lidar::HitClass::kUnknown);
 }
 
-// Feeds the chain a simulated run and counts its returns on the static world (walls, parked
-// cars, poles) that it calls dynamic, after the first second of mapping.
-struct StaticWorldCount {
-  std::int64_t dynamic = 0;
-  std::int64_t returns = 0;
-};
-
-StaticWorldCount RunOnStaticWorld(const sim::Scenario& scenario,
-                                  const lidar::LidarChainOptions& options) {
-  const sim::Simulator simulator(scenario);
-  const sim::SensorLog log = simulator.Run(1);
-  LidarChainStage stage(options);
-  StaticWorldCount count;
+// Feeds `stage` a simulated run in time order, the odometry up to each scan before it, and
+// calls after_scan(k) after scan k.
+void FeedLog(LidarChainStage& stage, const sim::SensorLog& log,
+             const std::function<void(std::size_t)>& after_scan) {
   std::size_t o = 0;
   for (std::size_t k = 0; k < log.lidar.size(); ++k) {
     const LidarScan& scan = log.lidar[k];
@@ -133,15 +125,38 @@ StaticWorldCount RunOnStaticWorld(const sim::Scenario& scenario,
       stage.OnOdometry(log.odometry[o++]);
     }
     stage.OnLidar(scan);
-    if (scan.stamp < FromSeconds(1.0)) continue;
-    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-      if (log.truth[k].lidar_beam_owner[i] != sim::kStaticOwner) continue;
-      const lidar::HitClass c = stage.last_hits().beam[i];
-      if (c == lidar::HitClass::kNoReturn) continue;
-      ++count.returns;
-      if (c == lidar::HitClass::kDynamic) ++count.dynamic;
-    }
+    after_scan(k);
   }
+}
+
+// Feeds the chain a simulated run and counts its returns on the static world (walls, parked
+// cars, poles) that it calls dynamic, after the first second of mapping.
+struct StaticWorldCount {
+  std::int64_t dynamic = 0;
+  std::int64_t returns = 0;
+};
+
+// Adds scan k's returns on the static world, from the first second of mapping on.
+void CountStaticReturns(const LidarChainStage& stage, const sim::SensorLog& log, std::size_t k,
+                        StaticWorldCount& count) {
+  const LidarScan& scan = log.lidar[k];
+  if (scan.stamp < FromSeconds(1.0)) return;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (log.truth[k].lidar_beam_owner[i] != sim::kStaticOwner) continue;
+    const lidar::HitClass c = stage.last_hits().beam[i];
+    if (c == lidar::HitClass::kNoReturn) continue;
+    ++count.returns;
+    if (c == lidar::HitClass::kDynamic) ++count.dynamic;
+  }
+}
+
+StaticWorldCount RunOnStaticWorld(const sim::Scenario& scenario,
+                                  const lidar::LidarChainOptions& options) {
+  const sim::Simulator simulator(scenario);
+  const sim::SensorLog log = simulator.Run(1);
+  LidarChainStage stage(options);
+  StaticWorldCount count;
+  FeedLog(stage, log, [&](std::size_t k) { CountStaticReturns(stage, log, k, count); });
   return count;
 }
 
@@ -176,20 +191,15 @@ TEST(LidarChainStage, FarReturnsOfAMovingCarAreDynamic) {
     options.far_map_enabled = far_map;
     LidarChainStage stage(options);
     std::array<std::int64_t, 4> by_class{};  // indexed by HitClass
-    std::size_t o = 0;
-    for (std::size_t k = 0; k < log.lidar.size(); ++k) {
+    FeedLog(stage, log, [&](std::size_t k) {
       const LidarScan& scan = log.lidar[k];
-      while (o < log.odometry.size() && log.odometry[o].stamp <= scan.stamp) {
-        stage.OnOdometry(log.odometry[o++]);
-      }
-      stage.OnLidar(scan);
       for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
         const int owner = log.truth[k].lidar_beam_owner[i];
         const bool actor = owner != sim::kStaticOwner && owner != sim::kNoHit;
         if (!actor || !(scan.ranges_m[i] > 80.0f)) continue;
         ++by_class[static_cast<std::size_t>(stage.last_hits().beam[i])];
       }
-    }
+    });
     return by_class;
   };
   const auto with = count(true);
@@ -215,38 +225,26 @@ TEST(LidarChainStage, LocalisesInTheOdometryFrameOnTheDefaultScenario) {
   const sim::SensorLog log = simulator.Run(1);
   LidarChainStage stage;
   const Pose2 odom_from_world = simulator.ego_trajectory().At(0.0).pose.Inverse();
-  std::size_t o = 0;
   double worst_m = 0.0;
   double worst_rad = 0.0;
-  std::int64_t false_dynamic = 0;
-  std::int64_t returns = 0;
-  for (std::size_t k = 0; k < log.lidar.size(); ++k) {
+  StaticWorldCount count;
+  FeedLog(stage, log, [&](std::size_t k) {
     const LidarScan& scan = log.lidar[k];
-    while (o < log.odometry.size() && log.odometry[o].stamp <= scan.stamp) {
-      stage.OnOdometry(log.odometry[o++]);
-    }
-    stage.OnLidar(scan);
-    ASSERT_TRUE(stage.last_state().has_value());
     const Pose2 truth = odom_from_world * log.truth[k].ego.state.pose;
     const std::optional<EgoState> estimate = stage.localisation().PoseAt(scan.stamp);
-    ASSERT_TRUE(estimate.has_value());
+    if (!stage.last_state() || !estimate) {
+      ADD_FAILURE() << "no pose for the scan at " << ToSeconds(scan.stamp) << " s";
+      return;
+    }
     worst_m = std::max(worst_m, (estimate->pose.translation - truth.translation).norm());
     worst_rad = std::max(worst_rad, std::abs(WrapAngle(estimate->pose.yaw - truth.yaw)));
-    // The returns on the static world, after the first second of mapping.
-    if (scan.stamp < FromSeconds(1.0)) continue;
-    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-      if (log.truth[k].lidar_beam_owner[i] != sim::kStaticOwner) continue;
-      const lidar::HitClass c = stage.last_hits().beam[i];
-      if (c == lidar::HitClass::kNoReturn) continue;
-      ++returns;
-      if (c == lidar::HitClass::kDynamic) ++false_dynamic;
-    }
-  }
+    CountStaticReturns(stage, log, k, count);
+  });
   EXPECT_EQ(stage.skipped_scans(), 0);
   EXPECT_LT(worst_m, 0.1);
   EXPECT_LT(worst_rad, 0.5 * kPi / 180.0);
-  ASSERT_GT(returns, 0);
-  EXPECT_LT(static_cast<double>(false_dynamic) / static_cast<double>(returns), 0.02);
+  ASSERT_GT(count.returns, 0);
+  EXPECT_LT(static_cast<double>(count.dynamic) / static_cast<double>(count.returns), 0.02);
 }
 
 }  // namespace
