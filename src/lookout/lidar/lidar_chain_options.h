@@ -49,7 +49,6 @@ struct LidarChainOptions {
   // A beam with no return within the scanner's range (+inf, or at max_range_m) says the space
   // along it is empty: it clears its ray up to this range (and the map's insert range), so
   // that the open road an actor drives into has been seen free before the actor is on it.
-  // As far as the map's insert range (VehicleLocaliserOptions).
   // 0: no-return beams clear nothing, as in `lookout slam` (the CARMEN lasers' saturated codes
   // and the glass of buildings). NaN, negative and too-near beams never clear.
   double no_return_clear_m = 80.0;
