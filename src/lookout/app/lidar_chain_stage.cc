@@ -116,14 +116,14 @@ void LidarChainStage::MapScan(const LidarScan& scan, const Pose2& pose,
     const lidar::HitClass k = hits_.beam[i];
     if (k == lidar::HitClass::kNoReturn) {
       if (options_.no_return_clear_m > 0.0 && lidar::IsEmptyBeam(scan, i)) {
-        double r = std::min(options_.no_return_clear_m, clear_to[i]);
-        if (scan.max_range_m > 0.0) r = std::min(r, scan.max_range_m);
-        if (r > 0.0) empty_ends.push_back(along(i, r));
-        if (far_map_) {
-          double far = std::min(options_.far_map.max_insert_range_m, clear_to[i]);
-          if (scan.max_range_m > 0.0) far = std::min(far, scan.max_range_m);
-          if (far > 0.0) far_empty_ends.push_back(along(i, far));
-        }
+        // An empty beam's ray up to `reach`, its neighbours' returns and the scanner's range.
+        const auto add_empty = [&](double reach, std::vector<Eigen::Vector2d>& ends) {
+          double r = std::min(reach, clear_to[i]);
+          if (scan.max_range_m > 0.0) r = std::min(r, scan.max_range_m);
+          if (r > 0.0) ends.push_back(along(i, r));
+        };
+        add_empty(options_.no_return_clear_m, empty_ends);
+        if (far_map_) add_empty(options_.far_map.max_insert_range_m, far_empty_ends);
       }
       continue;
     }

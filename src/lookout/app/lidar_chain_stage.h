@@ -46,7 +46,6 @@ class LidarChainStage : public Stage {
   const EgoPoseSource& localisation() const { return localiser_; }
   const EgoPoseSource& dead_reckoning() const { return odometry_; }
   const lidar::LidarLocaliser& localiser() const { return localiser_; }
-  const lidar::LocalMap* far_map() const { return far_map_ ? &*far_map_ : nullptr; }
 
   // The stamp of the last scan processed, its localised state, the class of each of its beams
   // and its objects; nullopt / empty before the first.

@@ -38,9 +38,12 @@ Eigen::Vector2d ReturnPoint(const LidarScan& scan, std::size_t i) {
 
 namespace {
 
-// The rule of the header for one return whose map cell is c.
-HitClass ClassOfCell(const LocalMap& map, const CellIndex& c, float tolerance,
+// The rule of the header for one return whose map cell is c. The field stores distances
+// between cell centres: a tolerance of t metres is "an occupied cell centre within t", compared
+// with a hair of slack for the float distances.
+HitClass ClassOfCell(const LocalMap& map, const CellIndex& c, double static_tolerance_m,
                      float free_log_odds) {
+  const auto tolerance = static_cast<float>(static_tolerance_m + 1e-6);
   if (map.FieldDistance(c) <= tolerance || map.Occupied(c)) return HitClass::kStatic;
   if (map.LogOdds(c) <= free_log_odds) return HitClass::kDynamic;
   return HitClass::kUnknown;
@@ -52,16 +55,13 @@ ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Po
                             const HitClassificationOptions& options) {
   ScanHitClasses out;
   out.beam.assign(scan.ranges_m.size(), HitClass::kNoReturn);
-  // The field stores distances between cell centres: a tolerance of t metres is "an occupied
-  // cell centre within t", compared with a hair of slack for the float distances.
-  const auto tolerance = static_cast<float>(options.static_tolerance_m + 1e-6);
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     if (!IsReturn(scan, i, options.min_range_m)) {
       ++out.no_return_count;
       continue;
     }
     const CellIndex c = map.CellOf(vehicle_pose * ReturnPoint(scan, i));
-    const HitClass k = ClassOfCell(map, c, tolerance, options.free_log_odds);
+    const HitClass k = ClassOfCell(map, c, options.static_tolerance_m, options.free_log_odds);
     out.beam[i] = k;
     switch (k) {
       case HitClass::kStatic: ++out.static_count; break;
@@ -75,12 +75,11 @@ ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Po
 void ClassifyFarHits(const LocalMap& far_map, const LidarScan& scan, const Pose2& vehicle_pose,
                      double from_range_m, double static_tolerance_m,
                      const HitClassificationOptions& options, ScanHitClasses& classes) {
-  const auto tolerance = static_cast<float>(static_tolerance_m + 1e-6);
   for (std::size_t i = 0; i < classes.beam.size() && i < scan.ranges_m.size(); ++i) {
     if (classes.beam[i] != HitClass::kUnknown) continue;
     if (static_cast<double>(scan.ranges_m[i]) <= from_range_m) continue;
     const CellIndex c = far_map.CellOf(vehicle_pose * ReturnPoint(scan, i));
-    const HitClass k = ClassOfCell(far_map, c, tolerance, options.free_log_odds);
+    const HitClass k = ClassOfCell(far_map, c, static_tolerance_m, options.free_log_odds);
     if (k == HitClass::kUnknown) continue;
     classes.beam[i] = k;
     --classes.unknown_count;
