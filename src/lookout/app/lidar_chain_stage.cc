@@ -62,12 +62,25 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
   const Clock::time_point classified = Clock::now();
   const std::vector<lidar::ScanCluster> clusters =
       lidar::ClusterScan(scan, options_.segmentation, options_.hits.min_range_m);
+  // Motion the map cannot see (lidar/segment_motion.h), before the objects take the classes.
+  const std::vector<bool> own_motion =
+      lidar::OwnMotionEvidence(clusters, hits_.beam, options_.segment_motion);
+  std::vector<int> carried(clusters.size(), -1);
+  if (previous_segments_ && options_.segment_motion.enabled) {
+    lidar::MarkVacatedSegments(
+        lidar::VacatedReturns(*previous_segments_, scan, state->pose, options_.segment_motion,
+                              options_.hits.min_range_m),
+        options_.segment_motion, *previous_segments_);
+    carried = lidar::CarrySegmentMotion(*previous_segments_, scan, state->pose, clusters,
+                                        options_.segment_motion, hits_);
+  }
   last_objects_ = lidar::DescribeClusters(scan, clusters, hits_.beam, state->pose,
                                           options_.segmentation);
   // The map takes the propagated classes: a slow actor's returns that land on its own trace
   // (static) stay out of it, so the trace does not follow the actor. The rule's thresholds
   // keep a wall with a stray dynamic return in the map (docs/lidar-chain.md).
   lidar::PropagateDynamicSegments(scan, clusters, options_.dynamic_segments, hits_);
+  previous_segments_ = lidar::DescribeSegments(scan, state->pose, clusters, own_motion, carried);
   const Clock::time_point segmented = Clock::now();
   std::vector<bool> unmapped;
   if (options_.map_static_only && options_.unmap_dynamic_segments) {

@@ -4,7 +4,10 @@
 //   A. localisation: the particle filter with the car-like motion model localises the scan in
 //      the local map (lidar/localiser.h); the odometry it needs is the dead-reckoned wheel
 //      odometry (EgoOdometry carries speed and yaw rate, the localiser wants poses);
-//   B. moving and static hits: each return against the map as it was (lidar/hit_classification.h);
+//   B. moving and static hits: each return against the map as it was (lidar/hit_classification.h),
+//      then what the scan pair shows moving where the map cannot tell: returns of the last
+//      scan now seen through, a moving segment's returns carried to where it went
+//      (lidar/segment_motion.h);
 //   C-D. segmentation: the scan's clusters as LidarObjects in the vehicle frame at the scan's
 //      stamp (lidar/scan_segmentation.h);
 //   then the scan enters the map: the returns of static segments as hits, those of dynamic
@@ -29,6 +32,7 @@
 #include "lookout/lidar/local_map.h"
 #include "lookout/lidar/localiser.h"
 #include "lookout/lidar/scan_segmentation.h"
+#include "lookout/lidar/segment_motion.h"
 
 namespace lookout::app {
 
@@ -77,6 +81,8 @@ class LidarChainStage : public Stage {
   std::optional<EgoState> last_state_;
   lidar::ScanHitClasses hits_;
   std::optional<LidarObjectFrame> last_objects_;
+  // The last scan's segments, for the next scan's motion cues (lidar/segment_motion.h).
+  std::optional<lidar::ScanSegments> previous_segments_;
   std::vector<double> localise_ms_;
   std::vector<double> hits_ms_;
   std::vector<double> segment_ms_;

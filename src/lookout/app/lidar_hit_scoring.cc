@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "lookout/core/time.h"
 #include "lookout/sim/shapes.h"
 
 namespace lookout::app {
@@ -10,10 +11,8 @@ namespace {
 
 constexpr double kMovingSpeed_mps = 0.5;
 
-}  // namespace
-
-void LidarHitScorer::Observe(const lidar::ScanHitClasses& classes,
-                             const sim::TruthFrame& truth) {
+void CountBeams(const lidar::ScanHitClasses& classes, const sim::TruthFrame& truth,
+                HitCounts& counts) {
   // Speed of each actor index present in this frame.
   int max_index = -1;
   for (const sim::ActorTruth& a : truth.actors) max_index = std::max(max_index, a.index);
@@ -25,26 +24,36 @@ void LidarHitScorer::Observe(const lidar::ScanHitClasses& classes,
   for (std::size_t i = 0; i < n; ++i) {
     const lidar::HitClass k = classes.beam[i];
     if (k == lidar::HitClass::kNoReturn) {
-      ++counts_.no_returns;
+      ++counts.no_returns;
       continue;
     }
-    ++counts_.returns;
-    if (k == lidar::HitClass::kUnknown) ++counts_.unknown;
+    ++counts.returns;
+    if (k == lidar::HitClass::kUnknown) ++counts.unknown;
     const bool dynamic = k == lidar::HitClass::kDynamic;
     const int owner = truth.lidar_beam_owner[i];
     if (owner == sim::kStaticOwner) {
-      ++counts_.static_world;
-      if (dynamic) ++counts_.static_dynamic;
+      ++counts.static_world;
+      if (dynamic) ++counts.static_dynamic;
     } else if (owner >= 0 && owner <= max_index) {
       if (speed[static_cast<std::size_t>(owner)] > kMovingSpeed_mps) {
-        ++counts_.moving;
-        if (dynamic) ++counts_.moving_dynamic;
-        if (k == lidar::HitClass::kStatic) ++counts_.moving_static;
-        if (k == lidar::HitClass::kUnknown) ++counts_.moving_unknown;
+        ++counts.moving;
+        if (dynamic) ++counts.moving_dynamic;
+        if (k == lidar::HitClass::kStatic) ++counts.moving_static;
+        if (k == lidar::HitClass::kUnknown) ++counts.moving_unknown;
       } else if (dynamic) {
-        ++counts_.slow_actor_dynamic;
+        ++counts.slow_actor_dynamic;
       }
     }
+  }
+}
+
+}  // namespace
+
+void LidarHitScorer::Observe(const lidar::ScanHitClasses& classes, const sim::TruthFrame& truth) {
+  if (!first_stamp_) first_stamp_ = truth.stamp;
+  CountBeams(classes, truth, counts_);
+  if (ToSeconds(truth.stamp - *first_stamp_) >= kWarmUpS - 1e-9) {
+    CountBeams(classes, truth, after_warm_up_);
   }
   ++frames_;
 }
@@ -68,6 +77,14 @@ void LidarHitScorer::Report(std::map<std::string, double>& metrics) const {
   }
   if (c.returns > 0) metrics["lidar_hits.unknown_share"] = ratio(c.unknown, c.returns);
   if (frames_ > 0) metrics["lidar_hits.no_returns_per_frame"] = ratio(c.no_returns, frames_);
+  const HitCounts& w = after_warm_up_;
+  if (w.moving_dynamic + w.static_dynamic > 0) {
+    metrics["lidar_hits.moving_precision_after_1s"] =
+        ratio(w.moving_dynamic, w.moving_dynamic + w.static_dynamic);
+  }
+  if (w.moving > 0) {
+    metrics["lidar_hits.moving_recall_after_1s"] = ratio(w.moving_dynamic, w.moving);
+  }
 }
 
 }  // namespace lookout::app

@@ -13,10 +13,16 @@
 //                                unknown (the misses of the recall, by kind);
 //   lidar_hits.static_false_dynamic  dynamic returns on the static world / its returns;
 //   lidar_hits.unknown_share     unknown returns / returns;
-//   lidar_hits.no_returns_per_frame  beams that were not returns (NaN, inf, dropouts), mean.
+//   lidar_hits.no_returns_per_frame  beams that were not returns (NaN, inf, dropouts), mean;
+//   lidar_hits.moving_precision_after_1s, .moving_recall_after_1s  the same over the scans
+//                                from 1 s after the first one scored: the map starts empty,
+//                                so the first scan's returns are all unknown and a mover's
+//                                next few land on its own trace, seen once (the grid's
+//                                grid.velocity_rmse_after_1s_mps leaves out its start alike).
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "lookout/lidar/hit_classification.h"
@@ -39,13 +45,18 @@ struct HitCounts {
 
 class LidarHitScorer {
  public:
+  static constexpr double kWarmUpS = 1.0;
+
   // `classes` and `truth` of the same scan. Beams beyond the truth's owners are ignored.
   void Observe(const lidar::ScanHitClasses& classes, const sim::TruthFrame& truth);
   void Report(std::map<std::string, double>& metrics) const;
   const HitCounts& counts() const { return counts_; }
+  const HitCounts& counts_after_warm_up() const { return after_warm_up_; }
 
  private:
   HitCounts counts_;
+  HitCounts after_warm_up_;
+  std::optional<TimeNs> first_stamp_;
   std::int64_t frames_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "lookout/core/time.h"
 #include "lookout/sim/raycast.h"
 
 namespace lookout::app {
@@ -40,6 +41,28 @@ TEST(LidarHitScorer, CountsEachBeamByItsTrueOwnerAndItsClass) {
   EXPECT_DOUBLE_EQ(m.at("lidar_hits.unknown_share"), 1.0 / 8.0);
   EXPECT_DOUBLE_EQ(m.at("lidar_hits.no_returns_per_frame"), 2.0);
   EXPECT_EQ(scorer.counts().slow_actor_dynamic, 1);
+}
+
+// The first second of scans (the map still empty) counts in the whole-run figures only.
+TEST(LidarHitScorer, AfterOneSecondLeavesOutTheFirstSecondOfScans) {
+  sim::TruthFrame truth;
+  truth.actors = {Actor(0, 1.2)};
+  truth.lidar_beam_owner = {0, 0, sim::kStaticOwner};
+  lidar::ScanHitClasses unknown;
+  unknown.beam = {HitClass::kUnknown, HitClass::kUnknown, HitClass::kUnknown};
+  lidar::ScanHitClasses seen;
+  seen.beam = {HitClass::kDynamic, HitClass::kStatic, HitClass::kDynamic};
+  LidarHitScorer scorer;
+  for (const double t : {2.0, 2.5, 3.0}) {  // the first scan fixes the start
+    truth.stamp = FromSeconds(t);
+    scorer.Observe(t < 3.0 ? unknown : seen, truth);
+  }
+  std::map<std::string, double> m;
+  scorer.Report(m);
+  EXPECT_DOUBLE_EQ(m.at("lidar_hits.moving_recall"), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(m.at("lidar_hits.moving_recall_after_1s"), 1.0 / 2.0);
+  EXPECT_DOUBLE_EQ(m.at("lidar_hits.moving_precision_after_1s"), 1.0 / 2.0);
+  EXPECT_EQ(scorer.counts_after_warm_up().moving, 2);
 }
 
 TEST(LidarHitScorer, NoKeyWithoutAnythingToCount) {

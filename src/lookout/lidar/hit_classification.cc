@@ -16,6 +16,9 @@ void HitClassificationOptions::Validate(const std::string& source) const {
   if (!std::isfinite(min_range_m) || min_range_m < 0.0) {
     throw InputError(source, 0, "min_range_m", "must be finite and >= 0");
   }
+  if (!std::isfinite(static_min_log_odds)) {
+    throw InputError(source, 0, "static_min_log_odds", "must be finite");
+  }
 }
 
 bool IsReturn(const LidarScan& scan, std::size_t i, double min_range_m) {
@@ -42,9 +45,22 @@ namespace {
 // between cell centres: a tolerance of t metres is "an occupied cell centre within t", compared
 // with a hair of slack for the float distances.
 HitClass ClassOfCell(const LocalMap& map, const CellIndex& c, double static_tolerance_m,
-                     float free_log_odds) {
+                     float free_log_odds, float static_min_log_odds) {
   const auto tolerance = static_cast<float>(static_tolerance_m + 1e-6);
-  if (map.FieldDistance(c) <= tolerance || map.Occupied(c)) return HitClass::kStatic;
+  if (map.FieldDistance(c) <= tolerance || map.Occupied(c)) {
+    if (static_min_log_odds <= map.options().occupied_log_odds) return HitClass::kStatic;
+    const double cell = map.options().cell_size_m;
+    const int reach = static_cast<int>(std::floor(static_tolerance_m / cell + 1e-6));
+    const float reach2 = tolerance * tolerance;
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const auto d2 = static_cast<float>(cell * cell * (dx * dx + dy * dy));
+        if (d2 > reach2) continue;
+        if (map.LogOdds({c.ix + dx, c.iy + dy}) > static_min_log_odds) return HitClass::kStatic;
+      }
+    }
+    return HitClass::kUnknown;
+  }
   if (map.LogOdds(c) <= free_log_odds) return HitClass::kDynamic;
   return HitClass::kUnknown;
 }
@@ -61,7 +77,8 @@ ScanHitClasses ClassifyHits(const LocalMap& map, const LidarScan& scan, const Po
       continue;
     }
     const CellIndex c = map.CellOf(vehicle_pose * ReturnPoint(scan, i));
-    const HitClass k = ClassOfCell(map, c, options.static_tolerance_m, options.free_log_odds);
+    const HitClass k = ClassOfCell(map, c, options.static_tolerance_m, options.free_log_odds,
+                                   options.static_min_log_odds);
     out.beam[i] = k;
     switch (k) {
       case HitClass::kStatic: ++out.static_count; break;
@@ -79,7 +96,8 @@ void ClassifyFarHits(const LocalMap& far_map, const LidarScan& scan, const Pose2
     if (classes.beam[i] != HitClass::kUnknown) continue;
     if (static_cast<double>(scan.ranges_m[i]) <= from_range_m) continue;
     const CellIndex c = far_map.CellOf(vehicle_pose * ReturnPoint(scan, i));
-    const HitClass k = ClassOfCell(far_map, c, static_tolerance_m, options.free_log_odds);
+    const HitClass k = ClassOfCell(far_map, c, static_tolerance_m, options.free_log_odds,
+                                   options.static_min_log_odds);
     if (k == HitClass::kUnknown) continue;
     classes.beam[i] = k;
     --classes.unknown_count;

@@ -88,6 +88,23 @@ TEST(HitClassification, ThresholdsAreOptions) {
   EXPECT_EQ(ClassifyHits(map, scan, Pose2(), o).beam[Beam(0.0)], HitClass::kUnknown);
 }
 
+// A cell hit in one scan (log-odds 0.9) is occupied for the map, but no evidence that what is
+// there stays: with static_min_log_odds 1.5 a return beside it is unknown until a second scan
+// hits it (1.8). The default is the paper's rule: any occupied cell.
+TEST(HitClassification, StaticCanNeedACellSeenOccupiedInTwoScans) {
+  LocalMap map(HitTestMap());
+  const std::vector<Eigen::Vector2d> post = {{6.0, 0.0}};
+  const LidarScan scan = ScanOf({{5.95f, 0.0}});  // half a cell before the post's cell
+  map.InsertScan(Eigen::Vector2d::Zero(), post, {});
+  HitClassificationOptions o;
+  o.static_min_log_odds = 1.5f;
+  EXPECT_EQ(ClassifyHits(map, scan, Pose2(), o).beam[Beam(0.0)], HitClass::kUnknown);
+  const HitClassificationOptions paper;
+  EXPECT_EQ(ClassifyHits(map, scan, Pose2(), paper).beam[Beam(0.0)], HitClass::kStatic);
+  map.InsertScan(Eigen::Vector2d::Zero(), post, {});
+  EXPECT_EQ(ClassifyHits(map, scan, Pose2(), o).beam[Beam(0.0)], HitClass::kStatic);
+}
+
 TEST(HitClassification, UsesTheVehiclePoseAndTheMount) {
   const LocalMap map = WallMap();
   // The vehicle 3 m ahead, its lidar mounted 1 m further: a 4 m return reaches the wall.

@@ -47,6 +47,7 @@ void LidarChainOptions::Validate(const std::string& source) const {
   hits.Validate(source);
   segmentation.Validate(source);
   dynamic_segments.Validate(source);
+  segment_motion.Validate(source);
   if (hits.static_tolerance_m > localiser.map.field_max_distance_m) {
     throw InputError(source, 0, "hits.static_tolerance_m",
                      "must be at most map.field_max_distance_m (the field knows no further)");

@@ -9,6 +9,7 @@
 #include "lookout/lidar/dynamic_segments.h"
 #include "lookout/lidar/hit_classification.h"
 #include "lookout/lidar/scan_segmentation.h"
+#include "lookout/lidar/segment_motion.h"
 #include "lookout/lidar/slam_options.h"
 
 namespace lookout::lidar {
@@ -33,6 +34,7 @@ struct LidarChainOptions {
   HitClassificationOptions hits;
   SegmentationOptions segmentation;
   DynamicSegmentOptions dynamic_segments;
+  SegmentMotionOptions segment_motion;
   // Moving actors must not enter the map of the static world: returns classified dynamic only
   // clear the space in front of them (their rays), ending short of the return by
   // dynamic_ray_margin_m; static and unknown returns are mapped as hits. False maps every
@@ -42,10 +44,11 @@ struct LidarChainOptions {
   // With map_static_only: every return of a segment with a dynamic return (a moving object by
   // the paper's rule, IV.C) only clears space, whatever its own class. Meant for an actor's
   // surface that slides along itself (a cyclist seen from the side), whose returns land mostly
-  // in cells its earlier returns filled and so are static and mapped again. Off: measured
-  // worse (docs/lidar-chain.md), since a wall segment with one false dynamic return then
-  // stays out of the map and gives more of them.
-  bool unmap_dynamic_segments = false;
+  // in cells its earlier returns filled and would be mapped again. A wall segment with one
+  // false dynamic return then stays out of the map that scan; measured on the catalogue
+  // (docs/lidar-chain.md), with the segment motion, it costs no precision and brings the
+  // crowd's moving-hit recall from 0.915 to 0.926 (0.907 -> 0.920 before the segment motion).
+  bool unmap_dynamic_segments = true;
   // A beam with no return within the scanner's range (+inf, or at max_range_m) says the space
   // along it is empty: it clears its ray up to this range (and the map's insert range), so
   // that the open road an actor drives into has been seen free before the actor is on it.
