@@ -37,9 +37,14 @@ struct CentreDepth {
   double variance_m2 = 0.0;
 };
 
-CentreDepth DepthBehindSide(ObjectClass c, double side_length_m, const DetectionOptions& o) {
+// `along_motion`: whether the seen side runs along the object's motion (its long side), when
+// its velocity says so (DetectionOptions::heading_min_speed_mps); nullopt: the side's length
+// decides.
+CentreDepth DepthBehindSide(ObjectClass c, double side_length_m, std::optional<bool> along_motion,
+                            const DetectionOptions& o) {
   const auto box = [&](double length, double width) {
-    return side_length_m >= 0.5 * (length + width) ? 0.5 * width : 0.5 * length;
+    const bool long_side = along_motion.value_or(side_length_m >= 0.5 * (length + width));
+    return long_side ? 0.5 * width : 0.5 * length;
   };
   switch (c) {
     case ObjectClass::kPedestrian: return {o.pedestrian_radius_m, 0.0};
@@ -53,6 +58,24 @@ CentreDepth DepthBehindSide(ObjectClass c, double side_length_m, const Detection
     }
   }
   return {};
+}
+
+// Whether `segment` runs along the motion of `o` (within 45 degrees of its velocity), when the
+// velocity is fast and certain enough to tell.
+std::optional<bool> AlongMotion(const fusion::FusedObject& o, const Eigen::Vector2d& segment,
+                                const DetectionOptions& options) {
+  const Eigen::Vector2d& v = o.velocity_mps;
+  const double side = segment.norm();
+  if (!(side >= options.min_segment_m) || !v.allFinite() ||
+      !(v.norm() >= options.heading_min_speed_mps)) {
+    return std::nullopt;
+  }
+  const Eigen::Matrix2d& pv = o.velocity_covariance;
+  if (!pv.allFinite() || !(pv.determinant() > 0.0) ||
+      v.dot(pv.inverse() * v) <= ChiSquareQuantile(options.moving_probability, 2.0)) {
+    return std::nullopt;
+  }
+  return std::abs(segment.dot(v)) >= std::cos(kPi / 4.0) * side * v.norm();
 }
 
 }  // namespace
@@ -115,6 +138,7 @@ void DetectionOptions::Validate(const std::string& source) const {
   }
   positive(min_segment_m, "min_segment_m");
   positive(static_speed_mps, "static_speed_mps");
+  positive(heading_min_speed_mps, "heading_min_speed_mps");
   if (!(moving_probability > 0.0 && moving_probability < 1.0)) {
     throw InputError(source, 0, "moving_probability", "must be in (0, 1)");
   }
@@ -202,7 +226,7 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
       away = normal;
     }
     const double n = away.norm();
-    const CentreDepth depth = DepthBehindSide(c, side, options);
+    const CentreDepth depth = DepthBehindSide(c, side, AlongMotion(o, segment, options), options);
     const Eigen::Vector2d normal = n > 1e-9 ? Eigen::Vector2d(away / n) : Eigen::Vector2d::Zero();
     const Eigen::Vector2d centre = o.point_m + depth.depth_m * normal;
     tracking::Detection d;

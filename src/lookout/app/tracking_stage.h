@@ -99,6 +99,13 @@ struct DetectionOptions {
   // zero (outside this chi-square gate of zero, 2 dof).
   double static_speed_mps = 0.5;
   double moving_probability = 0.99;
+  // Which side of its box an object shows: a road user moves along its length, so a seen side
+  // within 45 degrees of the object's velocity is its long side, otherwise its front or rear,
+  // when the velocity is at least this fast and significantly not zero (moving_probability);
+  // otherwise the side's length decides (longer than half the box's length plus width: the
+  // long side). The length alone flips between the two on a long side seen in part (2.5-3.5 m
+  // of a car's 4.5 m), and each flip moves the centre by 1.35 m.
+  double heading_min_speed_mps = 1.0;
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "detection options") const;

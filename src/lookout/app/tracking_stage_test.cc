@@ -67,6 +67,28 @@ TEST(DetectionsFromFusedObjectsTest, CentreIsHalfTheDepthBehindTheSeenSide) {
   EXPECT_EQ(walker[0].sensors, 2);
 }
 
+// A car crossing 20 m ahead, its long side seen in part (2.7 m of 4.5 m: shorter than the rule's
+// 3.15 m). Without a velocity it is taken for the front, 2.25 m deep; moving along the side at
+// 8 m/s (0.5 m/s sigma) it is the long side, 0.9 m deep. Moving across the side, the front.
+// A velocity too uncertain or too slow to tell leaves the length to decide.
+TEST(DetectionsFromFusedObjectsTest, TheObjectsMotionTellsWhichSideIsSeen) {
+  const DetectionOptions options;
+  const auto depth = [&](Eigen::Vector2d v, double sigma_mps) {
+    fusion::FusedObject o = Object(ObjectClass::kCar, {20.0, -1.35}, {20.0, 1.35});
+    o.velocity_mps = v;
+    o.velocity_covariance = sigma_mps * sigma_mps * Eigen::Matrix2d::Identity();
+    const auto d = DetectionsFromFusedObjects(Frame(0, {o}), options);
+    EXPECT_EQ(d.size(), 1u);
+    return d.empty() ? 0.0 : d[0].position_m.x() - 20.0;
+  };
+  EXPECT_NEAR(depth({0.0, 0.0}, 1.0), 2.25, 1e-12);
+  EXPECT_NEAR(depth({0.0, 8.0}, 0.5), 0.9, 1e-12);
+  EXPECT_NEAR(depth({3.0, -8.0}, 0.5), 0.9, 1e-12);   // 20.6 degrees off the side
+  EXPECT_NEAR(depth({8.0, 0.0}, 0.5), 2.25, 1e-12);   // driving away: its rear
+  EXPECT_NEAR(depth({0.0, 8.0}, 5.0), 2.25, 1e-12);   // not significantly moving
+  EXPECT_NEAR(depth({0.0, 0.8}, 0.01), 2.25, 1e-12);  // slower than heading_min_speed_mps
+}
+
 // A lidar-only object of unknown class may be a walker (centre on its side) or a car (half a
 // box behind): its centre is half the car's depth behind, with the variance of a uniform depth
 // along the side's normal, and across it the covariance it had.
