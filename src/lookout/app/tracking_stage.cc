@@ -158,6 +158,12 @@ void DetectionOptions::Validate(const std::string& source) const {
   if (!std::isfinite(building_margin_m) || building_margin_m < 0.0) {
     throw InputError(source, 0, "building_margin_m", "must be >= 0");
   }
+  if (!std::isfinite(camera_occluder_margin_m) || camera_occluder_margin_m < 0.0) {
+    throw InputError(source, 0, "camera_occluder_margin_m", "must be >= 0");
+  }
+  if (!std::isfinite(camera_occluder_margin_rad) || camera_occluder_margin_rad < 0.0) {
+    throw InputError(source, 0, "camera_occluder_margin_rad", "must be >= 0");
+  }
 }
 
 void TrackingStageOptions::Validate(const std::string& source) const {
@@ -177,6 +183,29 @@ bool CameraObjectNear(const fusion::FusedObjectFrame& frame, const fusion::Fused
     const Eigen::Matrix2d s = c.point_covariance + o.point_covariance;
     if (!d.allFinite() || !s.allFinite() || s.determinant() <= 0.0) continue;
     if (d.dot(s.inverse() * d) <= gate) return true;
+  }
+  return false;
+}
+
+// Whether another object of `frame` that the lidar saw stands between the camera and `o`:
+// nearer than `o` by more than camera_occluder_margin_m, its seen side spanning `o`'s bearing
+// from the camera (widened by camera_occluder_margin_rad). The camera cannot be asked about
+// what it cannot see.
+bool HiddenFromCamera(const Pose2& camera_mount, const fusion::FusedObjectFrame& frame,
+                      const fusion::FusedObject& o, const DetectionOptions& options) {
+  const Pose2 to_camera = camera_mount.Inverse();
+  const Eigen::Vector2d q = to_camera * o.point_m;
+  const double range = q.norm();
+  const double bearing = std::atan2(q.y(), q.x());
+  for (const fusion::FusedObject& other : frame.objects) {
+    if (&other == &o || !other.lidar_id) continue;
+    const Eigen::Vector2d a = to_camera * other.front_start_m;
+    const Eigen::Vector2d b = to_camera * other.front_end_m;
+    if (std::max(a.norm(), b.norm()) > range - options.camera_occluder_margin_m) continue;
+    const double ba = std::atan2(a.y(), a.x());
+    const double bb = std::atan2(b.y(), b.x());
+    const double w = options.camera_occluder_margin_rad;
+    if (bearing >= std::min(ba, bb) - w && bearing <= std::max(ba, bb) + w) return true;
   }
   return false;
 }
@@ -245,7 +274,8 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
     if (o.stereo_id) {
       if (camera_frames >= 2) d.camera = tracking::CameraEvidence::kSeen;
     } else if (camera_mount && InCameraView(*camera_mount, centre, options) &&
-               !CameraObjectNear(frame, o, camera_gate)) {
+               !CameraObjectNear(frame, o, camera_gate) &&
+               !HiddenFromCamera(*camera_mount, frame, o, options)) {
       d.camera = tracking::CameraEvidence::kUnseen;
     }
     out.push_back(d);

@@ -89,6 +89,14 @@ struct DetectionOptions {
   double camera_view_margin_m = 2.0;
   // A camera object within this chi-square gate (2 dof) of a lidar-only object saw it.
   double camera_gate_probability = 0.999;
+  // The camera's silence on a lidar-only object is no evidence when another object the lidar
+  // saw stands between the camera and it: nearer by more than this (further behind than a
+  // second segment of one road user: a cyclist's two wheels are 1.5 m apart), its seen side
+  // within this angle of the object's bearing from the camera (a walker's half width at 20 m
+  // is about 1 degree). A walker hidden from the camera by a nearer one, and still seen by the
+  // lidar, was otherwise deleted as a ghost (occluded-pedestrian).
+  double camera_occluder_margin_m = 2.5;
+  double camera_occluder_margin_rad = 1.0 * kPi / 180.0;
   // A lidar-only object whose centre lies deeper than this inside a building of the ego's map
   // (building_map.h) is a ghost of its wall: left out. Half a walker's radius, so that a road
   // user beside a wall (its centre at least its radius outside) stays in with its estimate's

@@ -233,6 +233,39 @@ tracking::Track TrackWith(Eigen::Vector2d velocity, double velocity_sigma, doubl
 
 // Tracks without the camera's support are road users only while they move, surely: the grid's
 // ghosts on static structure stand still.
+// occluded-pedestrian: a walker 17.5 m away behind a nearer one (8 m) on the camera's line of
+// sight. The camera cannot see it, so its silence says nothing; without the near walker, or
+// with the near one only 1.5 m ahead (a second segment of one road user), it does.
+TEST(DetectionsFromFusedObjectsTest, TheCameraSaysNothingOfWhatItCannotSee) {
+  const auto walker = [](double x, bool camera) {
+    fusion::FusedObject o = Object(ObjectClass::kPedestrian, {x, 0.2}, {x, -0.2});
+    o.lidar_id = 1;
+    if (!camera) {
+      o.stereo_id.reset();
+      o.sensor_count = 1;
+    }
+    return o;
+  };
+  const Pose2 mount(0.8, 0.0, 0.0);
+  const auto far_evidence = [&](std::vector<fusion::FusedObject> objects) {
+    const auto d = DetectionsFromFusedObjects(Frame(0, objects), {}, {}, mount);
+    return d.empty() ? tracking::CameraEvidence::kSeen : d.front().camera;
+  };
+  using tracking::CameraEvidence;
+  EXPECT_EQ(far_evidence({walker(17.5, false)}), CameraEvidence::kUnseen);
+  EXPECT_EQ(far_evidence({walker(17.5, false), walker(8.0, true)}), CameraEvidence::kNone);
+  EXPECT_EQ(far_evidence({walker(17.5, false), walker(16.0, true)}), CameraEvidence::kUnseen);
+  // Beside the line of sight (2 m off at 8 m: 14 degrees), the near one hides nothing.
+  fusion::FusedObject aside = walker(8.0, true);
+  aside.front_start_m.y() += 2.0;
+  aside.front_end_m.y() += 2.0;
+  EXPECT_EQ(far_evidence({walker(17.5, false), aside}), CameraEvidence::kUnseen);
+  // An occluder the lidar did not see (the camera's own object) is not taken for one.
+  fusion::FusedObject camera_only = walker(8.0, true);
+  camera_only.lidar_id.reset();
+  EXPECT_EQ(far_evidence({walker(17.5, false), camera_only}), CameraEvidence::kUnseen);
+}
+
 TEST(RoadUserTest, TracksWithoutTheCameraMustMove) {
   const DetectionOptions o;
   EXPECT_FALSE(IsRoadUser(TrackWith({0.2, 0.1}, 0.1, 0.0), o)) << "standing";
