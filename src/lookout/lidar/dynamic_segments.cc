@@ -18,6 +18,24 @@ void DynamicSegmentOptions::Validate(const std::string& source) const {
   }
 }
 
+std::int64_t MarkClusterDynamic(const ScanCluster& cluster, ScanHitClasses& classes) {
+  std::int64_t changed = 0;
+  for (std::size_t i : cluster.beams) {
+    HitClass& k = classes.beam[i];
+    if (k == HitClass::kStatic) {
+      --classes.static_count;
+    } else if (k == HitClass::kUnknown) {
+      --classes.unknown_count;
+    } else {
+      continue;
+    }
+    k = HitClass::kDynamic;
+    ++classes.dynamic_count;
+    ++changed;
+  }
+  return changed;
+}
+
 std::int64_t PropagateDynamicSegments(const LidarScan& scan, std::span<const ScanCluster> clusters,
                                       const DynamicSegmentOptions& options,
                                       ScanHitClasses& classes) {
@@ -37,19 +55,7 @@ std::int64_t PropagateDynamicSegments(const LidarScan& scan, std::span<const Sca
     const double chord =
         (ReturnPoint(scan, c.beams.back()) - ReturnPoint(scan, c.beams.front())).norm();
     if (chord > options.max_chord_m) continue;
-    for (std::size_t i : c.beams) {
-      HitClass& k = classes.beam[i];
-      if (k == HitClass::kStatic) {
-        --classes.static_count;
-      } else if (k == HitClass::kUnknown) {
-        --classes.unknown_count;
-      } else {
-        continue;
-      }
-      k = HitClass::kDynamic;
-      ++classes.dynamic_count;
-      ++changed;
-    }
+    changed += MarkClusterDynamic(c, classes);
   }
   return changed;
 }

@@ -33,6 +33,10 @@ struct DynamicSegmentOptions {
   void Validate(const std::string& source = "lidar dynamic segment options") const;
 };
 
+// Marks every static and unknown return of `cluster` dynamic, the counts of `classes` in step;
+// returns how many changed.
+std::int64_t MarkClusterDynamic(const ScanCluster& cluster, ScanHitClasses& classes);
+
 // Marks every return of each qualifying cluster of `scan` dynamic (static and unknown ones;
 // kNoReturn beams are not in clusters) and keeps the counts of `classes` in step; returns how
 // many returns changed class.

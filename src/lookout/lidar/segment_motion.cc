@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "lookout/core/input_error.h"
+#include "lookout/lidar/dynamic_segments.h"
 
 namespace lookout::lidar {
 namespace {
@@ -29,21 +30,6 @@ struct Box {
            o.lo.y() - d <= hi.y();
   }
 };
-
-void MakeDynamic(const ScanCluster& cluster, ScanHitClasses& classes) {
-  for (std::size_t i : cluster.beams) {
-    HitClass& k = classes.beam[i];
-    if (k == HitClass::kStatic) {
-      --classes.static_count;
-    } else if (k == HitClass::kUnknown) {
-      --classes.unknown_count;
-    } else {
-      continue;
-    }
-    k = HitClass::kDynamic;
-    ++classes.dynamic_count;
-  }
-}
 
 }  // namespace
 
@@ -189,7 +175,7 @@ std::vector<int> CarrySegmentMotion(const ScanSegments& previous, const LidarSca
     const std::size_t s = nearest_of_cluster[c];
     if (s == segments || nearest_of_segment[s] != c) continue;
     carried[c] = previous.carried_scans[s] + 1;
-    MakeDynamic(clusters[c], classes);
+    MarkClusterDynamic(clusters[c], classes);
   }
   return carried;
 }
