@@ -11,8 +11,9 @@ namespace {
 
 constexpr double kMovingSpeed_mps = 0.5;
 
-void CountBeams(const lidar::ScanHitClasses& classes, const sim::TruthFrame& truth,
-                HitCounts& counts) {
+// The counts of one scan.
+HitCounts CountBeams(const lidar::ScanHitClasses& classes, const sim::TruthFrame& truth) {
+  HitCounts counts;
   // Speed of each actor index present in this frame.
   int max_index = -1;
   for (const sim::ActorTruth& a : truth.actors) max_index = std::max(max_index, a.index);
@@ -45,16 +46,30 @@ void CountBeams(const lidar::ScanHitClasses& classes, const sim::TruthFrame& tru
       }
     }
   }
+  return counts;
 }
 
 }  // namespace
 
+HitCounts& HitCounts::operator+=(const HitCounts& o) {
+  returns += o.returns;
+  no_returns += o.no_returns;
+  unknown += o.unknown;
+  moving += o.moving;
+  moving_dynamic += o.moving_dynamic;
+  moving_static += o.moving_static;
+  moving_unknown += o.moving_unknown;
+  static_world += o.static_world;
+  static_dynamic += o.static_dynamic;
+  slow_actor_dynamic += o.slow_actor_dynamic;
+  return *this;
+}
+
 void LidarHitScorer::Observe(const lidar::ScanHitClasses& classes, const sim::TruthFrame& truth) {
   if (!first_stamp_) first_stamp_ = truth.stamp;
-  CountBeams(classes, truth, counts_);
-  if (ToSeconds(truth.stamp - *first_stamp_) >= kWarmUpS - 1e-9) {
-    CountBeams(classes, truth, after_warm_up_);
-  }
+  const HitCounts scan = CountBeams(classes, truth);
+  counts_ += scan;
+  if (ToSeconds(truth.stamp - *first_stamp_) >= kWarmUpS - 1e-9) after_warm_up_ += scan;
   ++frames_;
 }
 
@@ -63,10 +78,12 @@ void LidarHitScorer::Report(std::map<std::string, double>& metrics) const {
   auto ratio = [](std::int64_t a, std::int64_t b) {
     return static_cast<double>(a) / static_cast<double>(b);
   };
-  const std::int64_t counted_dynamic = c.moving_dynamic + c.static_dynamic;
-  if (counted_dynamic > 0) {
-    metrics["lidar_hits.moving_precision"] = ratio(c.moving_dynamic, counted_dynamic);
-  }
+  // Dynamic returns on moving actors over those on movers and on the static world.
+  const auto precision = [&](const HitCounts& h, const std::string& key) {
+    const std::int64_t counted_dynamic = h.moving_dynamic + h.static_dynamic;
+    if (counted_dynamic > 0) metrics[key] = ratio(h.moving_dynamic, counted_dynamic);
+  };
+  precision(c, "lidar_hits.moving_precision");
   if (c.moving > 0) {
     metrics["lidar_hits.moving_recall"] = ratio(c.moving_dynamic, c.moving);
     metrics["lidar_hits.moving_as_static"] = ratio(c.moving_static, c.moving);
@@ -78,10 +95,7 @@ void LidarHitScorer::Report(std::map<std::string, double>& metrics) const {
   if (c.returns > 0) metrics["lidar_hits.unknown_share"] = ratio(c.unknown, c.returns);
   if (frames_ > 0) metrics["lidar_hits.no_returns_per_frame"] = ratio(c.no_returns, frames_);
   const HitCounts& w = after_warm_up_;
-  if (w.moving_dynamic + w.static_dynamic > 0) {
-    metrics["lidar_hits.moving_precision_after_1s"] =
-        ratio(w.moving_dynamic, w.moving_dynamic + w.static_dynamic);
-  }
+  precision(w, "lidar_hits.moving_precision_after_1s");
   if (w.moving > 0) {
     metrics["lidar_hits.moving_recall_after_1s"] = ratio(w.moving_dynamic, w.moving);
   }

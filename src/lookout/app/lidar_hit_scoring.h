@@ -41,6 +41,8 @@ struct HitCounts {
   std::int64_t static_world = 0;        // returns on the static world
   std::int64_t static_dynamic = 0;      // ... classified dynamic
   std::int64_t slow_actor_dynamic = 0;  // dynamic returns on actors at most 0.5 m/s
+
+  HitCounts& operator+=(const HitCounts& o);
 };
 
 class LidarHitScorer {
