@@ -102,6 +102,7 @@ struct PipelineChoices {
   std::string ego_pose = "odometry";
   std::string lidar_objects = "segmentation";
   std::string stereo_class = "on";
+  std::string grid_scan_flow = "off";
   std::string tracker = "mht";
   std::string risk_shape = "boxes";
   std::string pedestrian_model = "constant-velocity";
@@ -110,6 +111,7 @@ struct PipelineChoices {
   PipelineOptions Options() const {
     PipelineOptions o;
     o.stereo_class.enabled = stereo_class == "on";
+    o.grid_filter.scan_flow.enabled = grid_scan_flow == "on";
     o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
                                         : EgoPoseMode::kLidarLocalisation;
     o.lidar_objects =
@@ -137,6 +139,11 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
   command
       ->add_option("--stereo-class", choices.stereo_class,
                    "The camera's classes as evidence for the grid's class layer: on or off")
+      ->check(CLI::IsMember({"on", "off"}));
+  command
+      ->add_option("--grid-scan-flow", choices.grid_scan_flow,
+                   "The grid's search for newly seen occupancy guided by the scan pair's "
+                   "displacement (grid/scan_flow.h): on or off")
       ->check(CLI::IsMember({"on", "off"}));
   command
       ->add_option("--tracker", choices.tracker,

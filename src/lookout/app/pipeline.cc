@@ -33,9 +33,8 @@ Pipeline::Pipeline(const PipelineOptions& options) : object_source_(options.lida
     const EgoPoseSource* source = options.ego_pose == EgoPoseMode::kLidarLocalisation
                                       ? &lidar_chain_->localisation()
                                       : nullptr;
-    auto grid = std::make_unique<GridStage>(grid::GridOptions{}, grid::FilterOptions{},
-                                            options.grid_objects, source,
-                                            options.stereo_class);
+    auto grid = std::make_unique<GridStage>(grid::GridOptions{}, options.grid_filter,
+                                            options.grid_objects, source, options.stereo_class);
     grid_ = grid.get();
     stages_.push_back(std::move(grid));
   }

@@ -35,6 +35,7 @@ enum class LidarObjectSource {
 
 struct PipelineOptions {
   bool grid = true;  // the extended grid (docs/extended-grid.md), with its objects
+  grid::FilterOptions grid_filter;  // its filter (grid/filter_options.h)
   // How the grid's rigid clusters become lidar objects (grid/grid_objects.h).
   grid::GridObjectOptions grid_objects;
   // The camera's classes as evidence for the grid's class layer (app/stereo_class_evidence.h);

@@ -51,9 +51,49 @@ SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, doubl
   return w;
 }
 
+SearchWindow MeasuredFlowWindow(const FlowMeasurement& flow, const float* class_pmf, double dt_s,
+                                double cell_size_m, const FilterOptions& options) {
+  SearchWindow w;
+  w.mean_x_cells = flow.mean_x_cells;
+  w.mean_y_cells = flow.mean_y_cells;
+  w.center = {static_cast<int>(std::lround(flow.mean_x_cells)),
+              static_cast<int>(std::lround(flow.mean_y_cells))};
+  w.half = (options.window_size_cells - 1) / 2;
+  w.stride = 1;
+  w.sigma_cells = AssociationSigmaCells(class_pmf, dt_s, cell_size_m, options);
+  return w;
+}
+
+std::vector<SearchWindow> SourceWindows(
+    std::span<const CellIndex> locals, std::span<const float> velocity_x_mps,
+    std::span<const float> velocity_y_mps, std::span<const float> seen,
+    std::span<const float> confidence, std::span<const float> class_pmf, double dt_s,
+    double cell_size_m, const FilterOptions& options, const ScanFlow* flow) {
+  const std::size_t n = locals.size();
+  std::vector<SearchWindow> windows(n);
+  std::vector<std::uint8_t> wide(n, 0);
+  ParallelForBlocks(n, 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      windows[s] = SearchWindowFor(static_cast<double>(velocity_x_mps[s]),
+                                   static_cast<double>(velocity_y_mps[s]),
+                                   static_cast<double>(seen[s]), static_cast<double>(confidence[s]),
+                                   &class_pmf[s * kGridClassCount], dt_s, cell_size_m, options);
+      wide[s] = windows[s].stride != 1 ? 1 : 0;
+    }
+  });
+  if (flow == nullptr || !flow->HasPair()) return windows;
+  const std::vector<FlowMeasurement> measured = flow->MeasureCells(locals, wide);
+  for (std::size_t s = 0; s < n; ++s) {
+    if (measured[s].kind == FlowKind::kUnknown) continue;
+    windows[s] = MeasuredFlowWindow(measured[s], &class_pmf[s * kGridClassCount], dt_s, cell_size_m,
+                                    options);
+  }
+  return windows;
+}
+
 Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
                                  const WindowIndexer& indexer, double dt_s,
-                                 const FilterOptions& options) {
+                                 const FilterOptions& options, const ScanFlow* flow) {
   Associations a;
   const auto occupancy = layers.Values(ids.occupancy);
   const auto seen = layers.Values(ids.seen);
@@ -99,26 +139,27 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   a.window.resize(sources);
   a.first_entry.resize(sources + 1);
   a.first_entry[0] = 0;
+  ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      const std::size_t cell = a.source[s];
+      a.occupancy[s] = occupancy[cell];
+      a.seen[s] = seen[cell];
+      a.velocity_x_mps[s] =
+          static_cast<float>(PredictVelocity(static_cast<double>(vx[cell]), dt_s, options));
+      a.velocity_y_mps[s] =
+          static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options));
+      a.confidence[s] = confidence[cell];
+      for (std::size_t k = 0; k < kGridClassCount; ++k) {
+        a.class_pmf[s * kGridClassCount + k] = class_layers[k][cell];
+      }
+      for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+        a.rigidity[s * kNeighbourCount + d] = rigidity_layers[d][cell];
+      }
+    }
+  });
+  a.window = SourceWindows(a.source_local, a.velocity_x_mps, a.velocity_y_mps, a.seen, a.confidence,
+                           a.class_pmf, dt_s, cell_size_m, options, flow);
   for (std::size_t s = 0; s < sources; ++s) {
-    const std::size_t cell = a.source[s];
-    a.occupancy[s] = occupancy[cell];
-    a.seen[s] = seen[cell];
-    a.velocity_x_mps[s] = static_cast<float>(
-        PredictVelocity(static_cast<double>(vx[cell]), dt_s, options));
-    a.velocity_y_mps[s] = static_cast<float>(
-        PredictVelocity(static_cast<double>(vy[cell]), dt_s, options));
-    a.confidence[s] = confidence[cell];
-    for (std::size_t k = 0; k < kGridClassCount; ++k) {
-      a.class_pmf[s * kGridClassCount + k] = class_layers[k][cell];
-    }
-    for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-      a.rigidity[s * kNeighbourCount + d] = rigidity_layers[d][cell];
-    }
-    a.window[s] = SearchWindowFor(static_cast<double>(a.velocity_x_mps[s]),
-                                  static_cast<double>(a.velocity_y_mps[s]),
-                                  static_cast<double>(seen[cell]),
-                                  static_cast<double>(confidence[cell]),
-                                  &a.class_pmf[s * kGridClassCount], dt_s, cell_size_m, options);
     a.first_entry[s + 1] = a.first_entry[s] + a.window[s].EntryCount();
   }
   const std::size_t entries = a.first_entry.back();

@@ -14,8 +14,12 @@
 //     noises (the variance of the mixture's velocity change, centred).
 // Only sources (IsSource) move; the rest of the map stays in place.
 
+#include <span>
+#include <vector>
+
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"
+#include "lookout/grid/scan_flow.h"
 #include "lookout/grid/scrolling_grid.h"
 
 namespace lookout::grid {
@@ -37,10 +41,25 @@ SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, doubl
                              double confidence, const float* class_pmf, double dt_s,
                              double cell_size_m, const FilterOptions& options);
 
+// The fine M x M window of a source that would get the wide window but whose displacement the
+// scan pair measured (`flow`, scan_flow.h; kStays or kMoves): centred on that displacement, with
+// the class's sigma. Used by the fast path and the reference.
+SearchWindow MeasuredFlowWindow(const FlowMeasurement& flow, const float* class_pmf, double dt_s,
+                                double cell_size_m, const FilterOptions& options);
+
+// Every source's window: SearchWindowFor, then MeasuredFlowWindow for those that got the wide one
+// and whose flow `flow` measures (nullptr: none). Sources as the window-local cells `locals`;
+// the state arrays are per source. Used by the fast path and the reference.
+std::vector<SearchWindow> SourceWindows(
+    std::span<const CellIndex> locals, std::span<const float> velocity_x_mps,
+    std::span<const float> velocity_y_mps, std::span<const float> seen,
+    std::span<const float> confidence, std::span<const float> class_pmf, double dt_s,
+    double cell_size_m, const FilterOptions& options, const ScanFlow* flow);
+
 // Eq. 8-9 for every active cell: the sources with their state copied, their windows, and the
 // normalised Psi in Associations::weight. Parallel over sources; deterministic.
 Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
                                  const WindowIndexer& indexer, double dt_s,
-                                 const FilterOptions& options);
+                                 const FilterOptions& options, const ScanFlow* flow = nullptr);
 
 }  // namespace lookout::grid

@@ -14,7 +14,7 @@
 namespace lookout::grid {
 
 ExtendedGrid::ExtendedGrid(const ScrollingGridGeometry& geometry, const FilterOptions& options)
-    : options_(options), layers_(geometry) {
+    : options_(options), layers_(geometry), flow_(options.scan_flow) {
   options_.Validate();
   ids_ = AddFilterLayers(layers_);
   workspace_.Resize(geometry.CellCount());
@@ -26,7 +26,9 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   assert(dt_s > 0.0);
   const WindowIndexer indexer(geometry());
 
-  Associations associations = PredictAssociations(layers_, ids_, indexer, dt_s, options_);  // 2
+  flow_.Prepare(z);
+  Associations associations =
+      PredictAssociations(layers_, ids_, indexer, dt_s, options_, &flow_);                 // 2
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
   const TargetIndex targets = BuildTargetIndex(associations, workspace_);
@@ -53,6 +55,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
                 stereo_, classes);                                                         // 8
   stereo_.clear();
   ClearSourceMap(associations, workspace_);
+  flow_.Remember(z);
 
   stats_.sources = associations.SourceCount();
   stats_.associations = associations.EntryCount();

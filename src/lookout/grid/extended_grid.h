@@ -35,6 +35,8 @@ class ExtendedGrid {
   GridLayers& mutable_layers() { return layers_; }
   const FilterLayerIds& ids() const { return ids_; }
   const FilterOptions& options() const { return options_; }
+  // The scan pair's memory (the last Update's hits), for the reference and tests.
+  const ScanFlow& scan_flow() const { return flow_; }
 
   // Moves the window (new cells get the priors: O = 0.5, no velocity, uniform class).
   VacatedCells Recenter(const Eigen::Vector2d& position_m) { return layers_.Recenter(position_m); }
@@ -61,6 +63,7 @@ class ExtendedGrid {
   GridLayers layers_;
   FilterLayerIds ids_;
   FilterWorkspace workspace_;
+  ScanFlow flow_;
   std::vector<StereoClassRegion> stereo_;
   Stats stats_;
 };

@@ -233,6 +233,35 @@ TEST(ExtendedGridReferenceTest, FastPathMatchesLiteralReferenceWithDenseCoreAndM
   }
 }
 
+// With the scan pair's windows (scan_flow.h) on: the reference, given the grid's scan pair,
+// chooses the same windows and agrees to float rounding; and the pair changed the result (the
+// check is not vacuous).
+TEST(ExtendedGridReferenceTest, FastPathMatchesLiteralReferenceWithScanFlow) {
+  FilterOptions options;
+  options.enable_rigidity_constraint = false;
+  options.scan_flow.enabled = true;
+  options.scan_flow.long_lag_scans = 2;
+  ExtendedGrid grid(Geometry(48, 32), options);
+  const auto world = [](int k) {
+    const double t = k * kDtS;
+    return std::vector<BoxM>{BoxM{0.9 + 7.5 * t, 1.2, 0.15, 0.9},  // a thin side, 4 cells a cycle
+                             BoxM{4.5, 3.3 - 1.9 * t, 0.9, 0.15}, BoxM{0.3, 4.2, 5.4, 0.15}};
+  };
+  for (int k = 0; k < 2; ++k) grid.Update(Measure(grid.geometry(), world(k)), kDtS);
+  MeasurementGrid z = Measure(grid.geometry(), world(2));
+  // The grid's pairs need stamps: Measure leaves them 0, the long baseline is then skipped.
+  ScanFlow flow = grid.scan_flow();
+  flow.Prepare(z);
+  ASSERT_TRUE(flow.HasPair());
+  GridLayers reference = grid.layers();
+  GridLayers without_flow = grid.layers();
+  grid.Update(z, kDtS);
+  ReferenceUpdate(reference, grid.ids(), z, kDtS, options, &flow);
+  ReferenceUpdate(without_flow, grid.ids(), z, kDtS, options, nullptr);
+  ExpectMatchesReference(Compare(grid, reference));
+  EXPECT_GT(Compare(grid, without_flow).occupancy, 1e-3);
+}
+
 // The dense core's entries: every displacement within +-dense_half of the centre once, the
 // lattice's where it has them, EntryOf the inverse of Displacement, Psi summing to one.
 TEST(SearchWindowTest, DenseCoreHoldsEveryNearDisplacementOnce) {

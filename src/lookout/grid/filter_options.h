@@ -7,6 +7,8 @@
 #include <array>
 #include <string>
 
+#include "lookout/grid/scan_flow.h"
+
 namespace lookout::grid {
 
 // The class layer's classes, in layer order (docs/extended-grid.md, "what the grid holds").
@@ -71,6 +73,9 @@ struct FilterOptions {
   // revealed occupancy is static structure, and a wide search alone would smear it over the
   // coarse window.
   double new_stay_probability = 0.5;
+  // Occupancy that would get the wide window but whose displacement the scan pair measures gets
+  // the fine window centred on it instead (scan_flow.h says why and how).
+  ScanFlowOptions scan_flow;
 
   // --- step 4, interaction constraints (eq. 11)
   // No convergence: a move j -> i is weighted by exp(-excess^2 / (2 sigma^2)), excess being the

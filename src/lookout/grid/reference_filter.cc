@@ -33,7 +33,7 @@ double Gaussian(double dx, double dy, double sigma) {
 }  // namespace
 
 void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
-                     double dt_s, const FilterOptions& options) {
+                     double dt_s, const FilterOptions& options, const ScanFlow* flow) {
   const ScrollingGridGeometry& geometry = layers.geometry();
   const std::size_t n = geometry.CellCount();
   const double cell_m = geometry.cell_size_m();
@@ -42,6 +42,33 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
   auto vx = layers.Values(ids.velocity_x_mps);
   auto vy = layers.Values(ids.velocity_y_mps);
   auto confidence = layers.Values(ids.velocity_confidence);
+
+  // The windows first (a design choice shared with the fast path, not an equation): the scan
+  // pair's measurement of a cell depends on the cells around it (ScanFlow::MeasureCells).
+  std::vector<CellIndex> window_locals;
+  std::vector<float> window_vx, window_vy, window_seen, window_confidence, window_pmf;
+  for (int ly = 0; ly < geometry.height(); ++ly) {
+    for (int lx = 0; lx < geometry.width(); ++lx) {
+      const std::size_t cell = geometry.StorageIndexOfLocal({lx, ly});
+      if (!IsSource(static_cast<double>(occupancy[cell]), static_cast<double>(seen[cell]),
+                    options)) {
+        continue;
+      }
+      window_locals.push_back({lx, ly});
+      window_vx.push_back(
+          static_cast<float>(PredictVelocity(static_cast<double>(vx[cell]), dt_s, options)));
+      window_vy.push_back(
+          static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
+      window_seen.push_back(seen[cell]);
+      window_confidence.push_back(confidence[cell]);
+      for (std::size_t c = 0; c < kGridClassCount; ++c) {
+        window_pmf.push_back(layers.Values(ids.class_pmf[c])[cell]);
+      }
+    }
+  }
+  const std::vector<SearchWindow> windows =
+      SourceWindows(window_locals, window_vx, window_vy, window_seen, window_confidence, window_pmf,
+                    dt_s, cell_m, options, flow);
 
   // --- eq. 8-9: Psi over each active cell's window.
   std::vector<Source> sources;
@@ -63,13 +90,7 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
       s.vy = static_cast<double>(
           static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
       s.confidence = static_cast<double>(confidence[cell]);
-      float pmf[kGridClassCount];
-      for (std::size_t c = 0; c < kGridClassCount; ++c) {
-        pmf[c] = layers.Values(ids.class_pmf[c])[cell];
-      }
-      const SearchWindow w = SearchWindowFor(s.vx, s.vy, static_cast<double>(seen[cell]),
-                                             s.confidence, pmf,
-                                             dt_s, cell_m, options);
+      const SearchWindow& w = windows[sources.size()];
       // The window's samples: the lattice, then the dense core's displacements off it.
       std::vector<CellIndex> displacements;
       for (int v = 0; v < w.size(); ++v) {

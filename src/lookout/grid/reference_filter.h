@@ -5,7 +5,7 @@
 // equations as they read, in double precision, scatter-based (each source pushes its contributions
 // into dense accumulators), no active-set bookkeeping, no target index, and the literal O(M^6)
 // rigidity term of eq. 11 (every move of every neighbour for every move of the cell). It shares
-// with the fast path only the window choice (SearchWindowFor: a design choice, not an equation) and
+// with the fast path only the window choice (SourceWindow: a design choice, not an equation) and
 // the options. Step 8 (classes) is not part of it.
 
 #include "lookout/grid/filter_options.h"
@@ -16,7 +16,9 @@ namespace lookout::grid {
 
 // Updates occupancy, seen, velocity, confidence and rigidity layers of `layers` (ids as
 // AddFilterLayers made them) with `z`, as ExtendedGrid::Update does before its class step.
+// `flow`: the scan pair the windows see (prepared with z: a copy of the grid's
+// ExtendedGrid::scan_flow() before its Update, then ScanFlow::Prepare(z)); nullptr: none.
 void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
-                     double dt_s, const FilterOptions& options);
+                     double dt_s, const FilterOptions& options, const ScanFlow* flow = nullptr);
 
 }  // namespace lookout::grid

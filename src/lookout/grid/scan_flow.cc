@@ -1,0 +1,323 @@
+#include "lookout/grid/scan_flow.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::grid {
+namespace {
+
+void Require(bool ok, const std::string& source, const std::string& field, const char* problem) {
+  if (!ok) throw InputError(source, 0, "grid.filter.scan_flow." + field, problem);
+}
+
+bool InUnit(double v) { return v >= 0.0 && v <= 1.0; }  // NaN: false
+
+// Row-major index of a window-local cell. Precondition: inside.
+std::size_t At(const HitMaps& m, int ix, int iy) {
+  return static_cast<std::size_t>(iy) * static_cast<std::size_t>(m.width) +
+         static_cast<std::size_t>(ix);
+}
+
+bool Inside(const HitMaps& m, int ix, int iy) {
+  return ix >= 0 && iy >= 0 && ix < m.width && iy < m.height;
+}
+
+// The doubled score of a target outside the window: 1 when a hit inside lies next to it (the
+// dilated map holds only the window's cells).
+int OutsideScore(const HitMaps& m, int x, int y) {
+  for (int ny = y - 1; ny <= y + 1; ++ny) {
+    for (int nx = x - 1; nx <= x + 1; ++nx) {
+      if (Inside(m, nx, ny) && m.now[At(m, nx, ny)] == 2) return 1;
+    }
+  }
+  return 0;
+}
+
+// Orders candidates: higher score, then shorter displacement, then earlier in row order (the
+// caller visits in row order and keeps the first of equals).
+bool Better(int score, const CellIndex& d, int best_score, const CellIndex& best) {
+  if (score != best_score) return score > best_score;
+  return d.ix * d.ix + d.iy * d.iy < best.ix * best.ix + best.iy * best.iy;
+}
+
+// The decision of scan_flow.h from the scores (doubled: integral), shared by both paths.
+// `score_at(d)` gives the doubled score of displacement d.
+template <typename ScoreAt>
+FlowMeasurement Decide(int hits, int search_half, const ScoreAt& score_at,
+                       const ScanFlowOptions& options) {
+  FlowMeasurement out;
+  out.patch_hits = hits;
+  if (hits < options.min_patch_hits) return out;
+  CellIndex best{0, 0};
+  int best_score = score_at(best);
+  for (int dy = -search_half; dy <= search_half; ++dy) {
+    for (int dx = -search_half; dx <= search_half; ++dx) {
+      const CellIndex d{dx, dy};
+      const int s = score_at(d);
+      if (Better(s, d, best_score, best)) {
+        best_score = s;
+        best = d;
+      }
+    }
+  }
+  out.score = 0.5 * best_score;
+  const int stay_score = score_at({0, 0});
+  const bool stays = stay_score > 0 && stay_score >= options.stay_share * best_score;
+  if (!stays && out.score < options.min_matched_share * hits) return out;
+  // Unambiguous: no displacement far from the chosen one scores nearly as well.
+  const CellIndex chosen = stays ? CellIndex{0, 0} : best;
+  const double radius2 = options.ambiguity_radius_cells * options.ambiguity_radius_cells;
+  for (int dy = -search_half; dy <= search_half; ++dy) {
+    for (int dx = -search_half; dx <= search_half; ++dx) {
+      const double ex = dx - chosen.ix;
+      const double ey = dy - chosen.iy;
+      if (ex * ex + ey * ey <= radius2) continue;
+      if (score_at({dx, dy}) < options.ambiguity_share * best_score) continue;
+      // Staying but ambiguous: a surface longer than the patch, or the inside of a solid body.
+      // Left to the caller (ScanFlow::MeasureCells), which knows the cells around.
+      if (stays) {
+        out.kind = FlowKind::kStays;
+        out.ambiguous = true;
+      }
+      return out;
+    }
+  }
+  if (stays) {
+    out.kind = FlowKind::kStays;
+    return out;
+  }
+  out.kind = FlowKind::kMoves;
+  out.displacement = best;
+  out.mean_x_cells = best.ix;
+  out.mean_y_cells = best.iy;
+  return out;
+}
+
+}  // namespace
+
+void ScanFlowOptions::Validate(const std::string& source) const {
+  Require(search_half_cells >= 0 && search_half_cells <= 32, source, "search_half_cells",
+          "must be in [0, 32]");
+  Require(patch_half_cells >= 0 && patch_half_cells <= 8, source, "patch_half_cells",
+          "must be in [0, 8]");
+  Require(min_patch_hits >= 1, source, "min_patch_hits", "must be >= 1");
+  Require(InUnit(stay_share), source, "stay_share", "must be in [0, 1]");
+  Require(InUnit(min_matched_share), source, "min_matched_share", "must be in [0, 1]");
+  Require(std::isfinite(ambiguity_radius_cells) && ambiguity_radius_cells >= 0.0, source,
+          "ambiguity_radius_cells", "must be finite and >= 0");
+  Require(InUnit(ambiguity_share), source, "ambiguity_share", "must be in [0, 1]");
+  Require(long_lag_scans >= 1 && long_lag_scans <= 16, source, "long_lag_scans",
+          "must be in [1, 16]");
+  Require(long_lag_below_cells >= 1 && long_lag_below_cells * long_lag_scans <= 32, source,
+          "long_lag_below_cells", "must be >= 1, times long_lag_scans at most 32");
+}
+
+void HitMaps::Reset(int width_cells, int height_cells) {
+  width = width_cells;
+  height = height_cells;
+  const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  before.assign(n, 0);
+  now.assign(n, 0);
+}
+
+void HitMaps::AddBefore(int ix, int iy) {
+  if (Inside(*this, ix, iy)) before[At(*this, ix, iy)] = 1;
+}
+
+void HitMaps::AddNow(int ix, int iy) {
+  if (!Inside(*this, ix, iy)) return;
+  for (int y = iy - 1; y <= iy + 1; ++y) {
+    for (int x = ix - 1; x <= ix + 1; ++x) {
+      if (!Inside(*this, x, y)) continue;
+      std::uint8_t& v = now[At(*this, x, y)];
+      v = std::max<std::uint8_t>(v, x == ix && y == iy ? 2 : 1);
+    }
+  }
+}
+
+FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int search_half_cells,
+                            const ScanFlowOptions& options) {
+  // The patch's previous hits as offsets, gathered once; each displacement then sums their
+  // lookups. A displacement that takes a hit out of the window scores 0 for it.
+  struct Hit {
+    int x, y;
+  };
+  Hit hits[(2 * 8 + 1) * (2 * 8 + 1)];
+  int n = 0;
+  const int p = options.patch_half_cells;
+  for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
+    for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
+      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) hits[n++] = {x, y};
+    }
+  }
+  const int half = search_half_cells;
+  // Scores of the whole search square, row-major, computed once (the decision reads some twice).
+  const int side = 2 * half + 1;
+  std::array<int, (2 * 32 + 1) * (2 * 32 + 1)> scores{};
+  if (n >= options.min_patch_hits) {
+    for (int dy = -half; dy <= half; ++dy) {
+      for (int dx = -half; dx <= half; ++dx) {
+        int s = 0;
+        for (int k = 0; k < n; ++k) {
+          const int x = hits[k].x + dx;
+          const int y = hits[k].y + dy;
+          if (Inside(maps, x, y)) {
+            s += maps.now[At(maps, x, y)];
+          } else {
+            s += OutsideScore(maps, x, y);
+          }
+        }
+        scores[static_cast<std::size_t>((dy + half) * side + dx + half)] = s;
+      }
+    }
+  }
+  return Decide(
+      n, half,
+      [&](const CellIndex& d) {
+        return scores[static_cast<std::size_t>((d.iy + half) * side + d.ix + half)];
+      },
+      options);
+}
+
+FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
+                                     int search_half_cells, const ScanFlowOptions& options) {
+  const int p = options.patch_half_cells;
+  int hits = 0;
+  for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
+    for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
+      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) ++hits;
+    }
+  }
+  // score(d) by the definition: 1 for a hit now at h + d, 1/2 for one next to it (doubled).
+  const auto score_at = [&](const CellIndex& d) {
+    int s = 0;
+    for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
+      for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
+        if (!Inside(maps, x, y) || maps.before[At(maps, x, y)] == 0) continue;
+        const int tx = x + d.ix;
+        const int ty = y + d.iy;
+        int best = 0;
+        for (int ny = ty - 1; ny <= ty + 1; ++ny) {
+          for (int nx = tx - 1; nx <= tx + 1; ++nx) {
+            if (!Inside(maps, nx, ny) || maps.now[At(maps, nx, ny)] != 2) continue;
+            best = std::max(best, nx == tx && ny == ty ? 2 : 1);
+          }
+        }
+        s += best;
+      }
+    }
+    return s;
+  };
+  return Decide(hits, search_half_cells, score_at, options);
+}
+
+ScanFlow::ScanFlow(const ScanFlowOptions& options) : options_(options) { options_.Validate(); }
+
+void ScanFlow::Prepare(const MeasurementGrid& z) {
+  const ScrollingGridGeometry& g = z.geometry;
+  has_pair_ = options_.enabled && !history_.empty();
+  has_long_pair_ = has_pair_ && options_.long_lag_scans > 1 &&
+                   static_cast<int>(history_.size()) == options_.long_lag_scans &&
+                   z.stamp > history_.front().stamp && z.stamp > history_.back().stamp;
+  maps_.Reset(has_pair_ ? g.width() : 0, has_pair_ ? g.height() : 0);
+  long_maps_.Reset(has_long_pair_ ? g.width() : 0, has_long_pair_ ? g.height() : 0);
+  if (!has_pair_) return;
+  const auto lay_before = [&](const Scan& scan, HitMaps& maps) {
+    for (const CellIndex& global : scan.hits_global) {
+      const CellIndex local = g.LocalFromGlobal(global);
+      maps.AddBefore(local.ix, local.iy);
+    }
+  };
+  lay_before(history_.back(), maps_);
+  if (has_long_pair_) {
+    lay_before(history_.front(), long_maps_);
+    long_lag_scale_ =
+        ToSeconds(z.stamp - history_.back().stamp) / ToSeconds(z.stamp - history_.front().stamp);
+  }
+  for (const std::size_t cell : z.touched) {
+    if (z.p_occupied[cell] <= 0.5f) continue;
+    const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(cell));
+    maps_.AddNow(local.ix, local.iy);
+    if (has_long_pair_) long_maps_.AddNow(local.ix, local.iy);
+  }
+}
+
+FlowMeasurement ScanFlow::Measure(const CellIndex& cell) const {
+  if (!has_pair_) return {};
+  const FlowMeasurement one = MeasureFlow(maps_, cell, options_.search_half_cells, options_);
+  const bool short_move = one.kind != FlowKind::kMoves ||
+                          std::max(std::abs(one.displacement.ix), std::abs(one.displacement.iy)) <
+                              options_.long_lag_below_cells;
+  if (!has_long_pair_ || !short_move) return one;
+  FlowMeasurement lag = MeasureFlow(
+      long_maps_, cell, options_.long_lag_below_cells * options_.long_lag_scans, options_);
+  if (lag.kind == FlowKind::kUnknown) return one;
+  lag.lag_scans = options_.long_lag_scans;
+  lag.mean_x_cells = lag.displacement.ix * long_lag_scale_;
+  lag.mean_y_cells = lag.displacement.iy * long_lag_scale_;
+  return lag;
+}
+
+std::vector<FlowMeasurement> ScanFlow::MeasureCells(std::span<const CellIndex> cells,
+                                                    std::span<const std::uint8_t> wanted) const {
+  std::vector<FlowMeasurement> out(cells.size());
+  if (!has_pair_) return out;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        if (wanted[i] != 0) out[i] = Measure(cells[i]);
+                      }
+                    });
+  // Ambiguous staying connected to measured motion is not staying: a car's long side matches
+  // itself unshifted as it drives along it, the inside of a solid body too. Connected: a chain of
+  // measured cells, each within link_radius of the next, that are unknown or ambiguous staying,
+  // from a moving cell. A wall seen along itself, with no motion on it, stays.
+  constexpr int kLinkRadius = 2;  // crosses a one-cell gap between sparse returns
+  std::vector<std::int32_t>& index = cell_index_;
+  index.assign(static_cast<std::size_t>(maps_.width) * static_cast<std::size_t>(maps_.height), -1);
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (wanted[i] == 0) continue;
+    const FlowMeasurement& m = out[i];
+    if (m.kind == FlowKind::kMoves) {
+      queue.push_back(i);
+    } else if (m.kind == FlowKind::kUnknown || m.ambiguous) {
+      index[At(maps_, cells[i].ix, cells[i].iy)] = static_cast<std::int32_t>(i);
+    }
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const CellIndex c = cells[queue[head]];
+    for (int y = c.iy - kLinkRadius; y <= c.iy + kLinkRadius; ++y) {
+      for (int x = c.ix - kLinkRadius; x <= c.ix + kLinkRadius; ++x) {
+        if (!Inside(maps_, x, y)) continue;
+        std::int32_t& j = index[At(maps_, x, y)];
+        if (j < 0) continue;
+        const auto k = static_cast<std::size_t>(j);
+        j = -1;  // visited
+        if (out[k].kind == FlowKind::kStays) out[k].kind = FlowKind::kUnknown;
+        queue.push_back(k);
+      }
+    }
+  }
+  return out;
+}
+
+void ScanFlow::Remember(const MeasurementGrid& z) {
+  if (!options_.enabled) return;
+  Scan scan;
+  scan.stamp = z.stamp;
+  for (const std::size_t cell : z.touched) {
+    if (z.p_occupied[cell] > 0.5f) scan.hits_global.push_back(z.geometry.GlobalFromStorage(cell));
+  }
+  history_.push_back(std::move(scan));
+  while (static_cast<int>(history_.size()) > options_.long_lag_scans) history_.pop_front();
+}
+
+}  // namespace lookout::grid

@@ -1,0 +1,153 @@
+#pragma once
+
+// Beyond the paper (the grid issue's item 4, "a wider search for newly seen occupancy"): the
+// displacement of occupancy that has no trusted velocity yet, measured from the scan pair.
+//
+// Why: eq. 8 gives such occupancy a wide window, and eq. 10 then spreads its mass over every
+// sample of it that the scan does not see free: a 20 m/s car's over the road around it, a walker's
+// over the wall beside her (docs/grid.md, known faults 1 and 2), and a static wall newly seen
+// over its own length. The scan pair says where the occupancy went: the previous scan's hits
+// around the cell, shifted by the right displacement, land on this scan's hits. Where one
+// displacement clearly explains them best, the cell's window is the tracked cells' fine M x M
+// window centred on it (association_prediction.h); a cell that the pair shows staying gets the
+// fine window at zero. Where the pair cannot tell (too few hits, a surface sliding along itself,
+// something newly revealed), the wide window stays.
+//
+// The measurement, for the patch of (2 patch_half + 1)^2 cells around the cell:
+//   score(d) = sum over the previous scan's hits h in the patch of
+//              1 if h + d is a hit now, 1/2 if a hit now is next to h + d (8-neighbourhood: a
+//              return moves within its cell, and the beams sample a moved surface elsewhere);
+//   best     = the displacement of highest score within +-search_half cells (ties: the
+//              shortest, then the first in row order);
+//   stays    when score(0) >= stay_share * score(best): staying explains the hits as well;
+//   moves    by best when score(best) >= min_matched_share * hits and no displacement farther
+//              than ambiguity_radius_cells from best scores ambiguity_share * score(best) or
+//              more (a straight surface moving along itself: the aperture problem);
+//   unknown  otherwise, and when the patch holds fewer than min_patch_hits previous hits.
+//
+// Two baselines. One cycle resolves fast motion (a car's 10 cells) but not a walker's 0.6 cell
+// a cycle, which whole-cell matching calls staying; so a displacement under long_lag_below_cells
+// over one cycle is measured again against the scan long_lag_scans back (2.4 cells for the
+// walker over four), and that displacement, scaled to this cycle by the stamps, is the mean.
+
+#include <cstdint>
+#include <deque>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "lookout/core/grid_geometry.h"
+#include "lookout/core/time.h"
+#include "lookout/grid/inverse_sensor_model.h"
+#include "lookout/grid/scrolling_grid.h"
+
+namespace lookout::grid {
+
+struct ScanFlowOptions {
+  // Off: every cell without a trusted velocity gets the wide window. Off by default until it
+  // holds solid bodies (docs/grid.md, "The scan pair's displacement"): the inside of a solid box
+  // matches itself unshifted, so a solid 12 m/s box stays put (FastLongClusterTendsToVehicle).
+  bool enabled = false;
+  // Displacements searched, cells per cycle: +-12 cells is 22.5 m/s at 0.15 m and 12.5 Hz, the
+  // wide window's reach.
+  int search_half_cells = 12;
+  // The patch: +-3 cells (1.05 m at 0.15 m), about a walker's width, a third of a car's side.
+  int patch_half_cells = 3;
+  int min_patch_hits = 3;
+  double stay_share = 0.9;
+  double min_matched_share = 0.6;
+  double ambiguity_radius_cells = 1.5;
+  double ambiguity_share = 0.8;
+  // The second baseline (1: none) and the one-cycle displacement (cells, Chebyshev) under which
+  // it is used; it searches +-long_lag_below_cells * long_lag_scans cells.
+  int long_lag_scans = 6;
+  int long_lag_below_cells = 2;
+
+  // Throws lookout::InputError naming the first field out of range.
+  void Validate(const std::string& source = "scan flow options") const;
+};
+
+enum class FlowKind : std::uint8_t { kUnknown = 0, kStays, kMoves };
+
+struct FlowMeasurement {
+  FlowKind kind = FlowKind::kUnknown;
+  CellIndex displacement;  // cells over the baseline; {0, 0} unless kMoves
+  // The displacement over this cycle, cells (kMoves: displacement scaled from its baseline).
+  double mean_x_cells = 0.0;
+  double mean_y_cells = 0.0;
+  int lag_scans = 1;  // the baseline the measurement used
+  // kStays although a displacement far from zero explains the hits nearly as well.
+  bool ambiguous = false;
+  int patch_hits = 0;  // previous hits in the patch
+  double score = 0.0;  // score(best)
+};
+
+// Two scans' hits on one window, row-major over the window's local cells (index iy * width +
+// ix): `before` 1 where the previous scan hit, `now` 2 where this scan hit and 1 next to such
+// a cell (the score of h + d above, doubled to stay integral).
+struct HitMaps {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> before;
+  std::vector<std::uint8_t> now;
+
+  // Empty maps of the given size.
+  void Reset(int width_cells, int height_cells);
+  // Marks a hit of the previous / this scan at window-local (ix, iy); outside is ignored.
+  void AddBefore(int ix, int iy);
+  void AddNow(int ix, int iy);
+};
+
+// The measurement above, over one baseline, for the window-local cell `cell`, displacements
+// within +-search_half_cells. Pure.
+FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int search_half_cells,
+                            const ScanFlowOptions& options);
+
+// The slow literal form of MeasureFlow (every displacement, every patch cell, the definitions
+// as written above); for tests only.
+FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
+                                     int search_half_cells, const ScanFlowOptions& options);
+
+// The scan pairs of a scrolling grid: remembers the last long_lag_scans scans' hits by global cell
+// (so that they survive the window's moves) and lays the previous one and the oldest out, each
+// with this scan's, on the current window.
+class ScanFlow {
+ public:
+  explicit ScanFlow(const ScanFlowOptions& options = {});
+  const ScanFlowOptions& options() const { return options_; }
+
+  // Lays the remembered hits and z's hits (p_occupied > 0.5) on z's window. Call once per
+  // cycle, before Measure.
+  void Prepare(const MeasurementGrid& z);
+  // The flow of window-local `cell` for the prepared pairs, both baselines as above (kUnknown
+  // before a pair exists).
+  FlowMeasurement Measure(const CellIndex& cell) const;
+  // Measure for every cells[i] with wanted[i] != 0 (kUnknown for the others), then: an
+  // ambiguous kStays connected to a kMoves cell through measured cells that are kUnknown or
+  // ambiguous kStays, each within two cells of the next, becomes kUnknown (a car's long side
+  // matches itself unshifted as it drives along it; a wall seen along itself has no motion on
+  // it). Window-local cells, inside the window. Deterministic (a breadth-first search in the
+  // cells' order), the measurements in parallel.
+  std::vector<FlowMeasurement> MeasureCells(std::span<const CellIndex> cells,
+                                            std::span<const std::uint8_t> wanted) const;
+  // Whether Prepare found a previous scan to compare with.
+  bool HasPair() const { return has_pair_; }
+  // Remembers z's hits for the next cycle.
+  void Remember(const MeasurementGrid& z);
+
+ private:
+  ScanFlowOptions options_;
+  struct Scan {
+    TimeNs stamp = 0;
+    std::vector<CellIndex> hits_global;
+  };
+  std::deque<Scan> history_;  // newest last, at most long_lag_scans
+  bool has_pair_ = false;
+  bool has_long_pair_ = false;
+  double long_lag_scale_ = 1.0;                   // this cycle's dt over the long baseline's
+  HitMaps maps_;                                  // the previous scan and this one
+  HitMaps long_maps_;                             // the oldest remembered scan and this one
+  mutable std::vector<std::int32_t> cell_index_;  // MeasureCells' workspace
+};
+
+}  // namespace lookout::grid

@@ -1,0 +1,219 @@
+#include "lookout/grid/scan_flow.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "lookout/core/input_error.h"
+
+namespace lookout::grid {
+namespace {
+
+constexpr int kSide = 64;
+
+// The hits a lidar gives of a car seen from its rear-left corner: an L of two one-cell lines,
+// 12 cells along x and 6 along y, corner at (x0, y0).
+std::vector<CellIndex> CarOutline(int x0, int y0) {
+  std::vector<CellIndex> cells;
+  for (int x = 0; x < 12; ++x) cells.push_back({x0 + x, y0});
+  for (int y = 1; y < 6; ++y) cells.push_back({x0, y0 + y});
+  return cells;
+}
+
+HitMaps Pair(const std::vector<CellIndex>& before, const std::vector<CellIndex>& now) {
+  HitMaps m;
+  m.Reset(kSide, kSide);
+  for (const CellIndex& c : before) m.AddBefore(c.ix, c.iy);
+  for (const CellIndex& c : now) m.AddNow(c.ix, c.iy);
+  return m;
+}
+
+void ExpectSame(const FlowMeasurement& a, const FlowMeasurement& b) {
+  EXPECT_EQ(a.kind, b.kind);
+  EXPECT_EQ(a.displacement, b.displacement);
+  EXPECT_EQ(a.patch_hits, b.patch_hits);
+  EXPECT_DOUBLE_EQ(a.score, b.score);
+  EXPECT_EQ(a.ambiguous, b.ambiguous);
+}
+
+TEST(ScanFlowTest, AnOutlineThatMovedIsFoundAtItsDisplacement) {
+  const ScanFlowOptions options;
+  for (const CellIndex d : {CellIndex{7, 0}, CellIndex{-3, 2}, CellIndex{0, -11}}) {
+    SCOPED_TRACE("displacement " + std::to_string(d.ix) + "," + std::to_string(d.iy));
+    std::vector<CellIndex> moved;
+    for (const CellIndex& c : CarOutline(20, 20)) moved.push_back({c.ix + d.ix, c.iy + d.iy});
+    const HitMaps maps = Pair(CarOutline(20, 20), moved);
+    // The corner's patch holds both sides: the motion is pinned in both axes.
+    const FlowMeasurement m = MeasureFlow(maps, {21, 21}, options.search_half_cells, options);
+    EXPECT_EQ(m.kind, FlowKind::kMoves);
+    EXPECT_EQ(m.displacement, d);
+    EXPECT_DOUBLE_EQ(m.mean_x_cells, d.ix);
+    EXPECT_DOUBLE_EQ(m.mean_y_cells, d.iy);
+    ExpectSame(m, MeasureFlowReference(maps, {21, 21}, options.search_half_cells, options));
+  }
+}
+
+TEST(ScanFlowTest, AStaticOutlineStays) {
+  const ScanFlowOptions options;
+  const HitMaps maps = Pair(CarOutline(20, 20), CarOutline(20, 20));
+  const FlowMeasurement corner = MeasureFlow(maps, {21, 21}, options.search_half_cells, options);
+  EXPECT_EQ(corner.kind, FlowKind::kStays);
+  EXPECT_FALSE(corner.ambiguous);
+  // Mid-side the line matches itself shifted along it too: staying, but ambiguous.
+  const FlowMeasurement side = MeasureFlow(maps, {28, 20}, options.search_half_cells, options);
+  EXPECT_EQ(side.kind, FlowKind::kStays);
+  EXPECT_TRUE(side.ambiguous);
+}
+
+// A straight surface moving along itself (the aperture problem): no displacement is claimed.
+TEST(ScanFlowTest, ALineSlidingAlongItselfIsNoMotion) {
+  const ScanFlowOptions options;
+  std::vector<CellIndex> before, now;
+  for (int x = 0; x < 40; ++x) before.push_back({10 + x, 30});
+  for (int x = 0; x < 40; ++x) now.push_back({15 + x, 30});
+  const HitMaps maps = Pair(before, now);
+  const FlowMeasurement m = MeasureFlow(maps, {30, 30}, options.search_half_cells, options);
+  EXPECT_NE(m.kind, FlowKind::kMoves);
+}
+
+TEST(ScanFlowTest, TooFewHitsAreUnknown) {
+  const ScanFlowOptions options;
+  const HitMaps maps = Pair({{30, 30}, {31, 30}}, {{33, 30}, {34, 30}});
+  const FlowMeasurement m = MeasureFlow(maps, {30, 30}, options.search_half_cells, options);
+  EXPECT_EQ(m.kind, FlowKind::kUnknown);
+  EXPECT_EQ(m.patch_hits, 2);
+}
+
+// The fast path (offsets gathered once, lookups into the dilated map) against the definition
+// on random hit sets: every field equal.
+TEST(ScanFlowTest, FastPathMatchesTheDefinitionOnRandomScans) {
+  ScanFlowOptions options;
+  options.search_half_cells = 6;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> cell(0, kSide - 1), shift(-4, 4), keep(0, 9);
+    std::vector<CellIndex> before, now;
+    const CellIndex d{shift(rng), shift(rng)};
+    for (int k = 0; k < 300; ++k) {
+      const CellIndex c{cell(rng), cell(rng)};
+      before.push_back(c);
+      if (keep(rng) < 8) now.push_back({c.ix + d.ix, c.iy + d.iy});  // most moved, some lost
+      if (keep(rng) == 0) now.push_back({cell(rng), cell(rng)});     // and clutter
+    }
+    const HitMaps maps = Pair(before, now);
+    for (int k = 0; k < 40; ++k) {
+      const CellIndex at{cell(rng), cell(rng)};
+      ExpectSame(MeasureFlow(maps, at, options.search_half_cells, options),
+                 MeasureFlowReference(maps, at, options.search_half_cells, options));
+    }
+  }
+}
+
+// Scans of a scrolling grid: a walker-sized arc moving 0.6 cell a cycle. One cycle cannot tell
+// 0.6 cell from staying; the scan long_lag_scans back can, to half a cell over the baseline.
+MeasurementGrid ArcScan(const ScrollingGridGeometry& g, double x_cells, TimeNs stamp) {
+  MeasurementGrid z{g, stamp, std::vector<float>(g.CellCount(), 0.5f), {}, {}};
+  for (int k = -2; k <= 2; ++k) {
+    const CellIndex local{static_cast<int>(std::lround(x_cells + 0.3 * k * k)), 30 + k};
+    const std::size_t s = g.StorageIndexOfLocal(local);
+    z.p_occupied[s] = 0.7f;
+    z.touched.push_back(s);
+  }
+  return z;
+}
+
+TEST(ScanFlowTest, ASlowArcIsMeasuredOverTheLongBaseline) {
+  ScanFlowOptions options;
+  options.enabled = true;
+  ScanFlow flow(options);
+  const ScrollingGridGeometry g(0.15, kSide, kSide, CellIndex{-5, 7});
+  const TimeNs period = 80'000'000;  // 12.5 Hz
+  FlowMeasurement m;
+  for (int k = 0; k <= options.long_lag_scans; ++k) {
+    const MeasurementGrid z = ArcScan(g, 20.0 + 0.6 * k, period * (k + 1));
+    flow.Prepare(z);
+    m = flow.Measure({static_cast<int>(std::lround(20.0 + 0.6 * (k - 1))), 30});
+    flow.Remember(z);
+  }
+  ASSERT_EQ(m.kind, FlowKind::kMoves);
+  EXPECT_EQ(m.lag_scans, options.long_lag_scans);
+  EXPECT_NEAR(m.mean_x_cells, 0.6, 0.5 / options.long_lag_scans + 1e-9);
+  EXPECT_NEAR(m.mean_y_cells, 0.0, 1e-9);
+}
+
+// MeasureCells: an ambiguous "stays" connected to measured motion is not staying (a car's long
+// side matches itself unshifted as it drives along it; its corner pins the motion); on its own
+// (a wall seen along itself) it is.
+TEST(ScanFlowTest, AmbiguousStayingConnectedToMotionIsUnknown) {
+  ScanFlowOptions options;
+  options.enabled = true;
+  options.long_lag_scans = 1;
+  const ScrollingGridGeometry g(0.15, kSide, kSide);
+  const auto scan = [&](const std::vector<CellIndex>& cells, TimeNs stamp) {
+    MeasurementGrid z{g, stamp, std::vector<float>(g.CellCount(), 0.5f), {}, {}};
+    for (const CellIndex& c : cells) {
+      const std::size_t s = g.StorageIndexOfLocal(c);
+      z.p_occupied[s] = 0.7f;
+      z.touched.push_back(s);
+    }
+    return z;
+  };
+  // A wall, and a car 30 cells long driving 7 cells along its side.
+  std::vector<CellIndex> before, now;
+  for (int x = 0; x < 50; ++x) {
+    before.push_back({5 + x, 55});
+    now.push_back({5 + x, 55});
+  }
+  for (int x = 0; x < 30; ++x) {
+    before.push_back({5 + x, 20});
+    now.push_back({12 + x, 20});
+  }
+  for (int y = 1; y < 6; ++y) {
+    before.push_back({5, 20 + y});
+    now.push_back({12, 20 + y});
+  }
+  ScanFlow flow(options);
+  flow.Remember(scan(before, 1));
+  flow.Prepare(scan(now, 2));
+  // Every hit of the previous scan is a cell to measure.
+  const std::vector<std::uint8_t> wanted(before.size(), 1);
+  const std::vector<FlowMeasurement> m = flow.MeasureCells(before, wanted);
+  const auto index_of = [&](const CellIndex& c) {
+    const auto it = std::find(before.begin(), before.end(), c);
+    EXPECT_NE(it, before.end());
+    return static_cast<std::size_t>(it - before.begin());
+  };
+  const FlowMeasurement wall = m[index_of({30, 55})];
+  EXPECT_EQ(wall.kind, FlowKind::kStays);
+  EXPECT_TRUE(wall.ambiguous);
+  const FlowMeasurement corner = m[index_of({5, 21})];
+  EXPECT_EQ(corner.kind, FlowKind::kMoves);
+  EXPECT_EQ(corner.displacement, (CellIndex{7, 0}));
+  // Mid-side: on its own it stays, ambiguously; connected to the corner, it is left unknown.
+  const HitMaps pair = Pair(before, now);
+  const FlowMeasurement side_alone =
+      MeasureFlow(pair, {25, 20}, options.search_half_cells, options);
+  EXPECT_EQ(side_alone.kind, FlowKind::kStays);
+  EXPECT_TRUE(side_alone.ambiguous);
+  EXPECT_EQ(m[index_of({25, 20})].kind, FlowKind::kUnknown);
+}
+
+TEST(ScanFlowTest, OptionsOutOfRangeAreNamed) {
+  ScanFlowOptions options;
+  options.patch_half_cells = 9;
+  try {
+    options.Validate("test.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("patch_half_cells"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace lookout::grid
