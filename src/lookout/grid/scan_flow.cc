@@ -50,7 +50,7 @@ bool Better(int score, const CellIndex& d, int best_score, const CellIndex& best
 // The decision of scan_flow.h from the scores (doubled: integral), shared by both paths.
 // `score_at(d)` gives the doubled score of displacement d.
 template <typename ScoreAt>
-FlowMeasurement Decide(int hits, int search_half, const ScoreAt& score_at,
+FlowMeasurement Decide(int hits, int vacated, int search_half, const ScoreAt& score_at,
                        const ScanFlowOptions& options) {
   FlowMeasurement out;
   out.patch_hits = hits;
@@ -73,12 +73,20 @@ FlowMeasurement Decide(int hits, int search_half, const ScoreAt& score_at,
   if (!stays && out.score < options.min_matched_share * hits) return out;
   // Unambiguous: no displacement far from the chosen one scores nearly as well.
   const CellIndex chosen = stays ? CellIndex{0, 0} : best;
+  const bool shortest = !stays && (vacated >= options.shortest_min_vacated_share * hits ||
+                                   stay_score < options.shortest_below_stay_share * best_score);
   const double radius2 = options.ambiguity_radius_cells * options.ambiguity_radius_cells;
   for (int dy = -search_half; dy <= search_half; ++dy) {
     for (int dx = -search_half; dx <= search_half; ++dx) {
       const double ex = dx - chosen.ix;
       const double ey = dy - chosen.iy;
       if (ex * ex + ey * ey <= radius2) continue;
+      // Where the scan sees through the patch's previous hits, the occupancy left them, and a
+      // longer displacement is no rival: a solid body also matches itself moved further into its
+      // own extent; the shortest displacement that explains the hits is its motion. (Hits
+      // sliding along a wall seen at a grazing angle leave nothing seen through: every shift
+      // along it stays a rival.)
+      if (shortest && dx * dx + dy * dy > best.ix * best.ix + best.iy * best.iy) continue;
       if (score_at({dx, dy}) < options.ambiguity_share * best_score) continue;
       // Staying but ambiguous: a surface longer than the patch, or the inside of a solid body.
       // Left to the caller (ScanFlow::MeasureCells), which knows the cells around.
@@ -113,6 +121,8 @@ void ScanFlowOptions::Validate(const std::string& source) const {
   Require(std::isfinite(ambiguity_radius_cells) && ambiguity_radius_cells >= 0.0, source,
           "ambiguity_radius_cells", "must be finite and >= 0");
   Require(InUnit(ambiguity_share), source, "ambiguity_share", "must be in [0, 1]");
+  Require(InUnit(shortest_min_vacated_share), source, "shortest_min_vacated_share",
+          "must be in [0, 1]");
   Require(long_lag_scans >= 1 && long_lag_scans <= 16, source, "long_lag_scans",
           "must be in [1, 16]");
   Require(long_lag_below_cells >= 1 && long_lag_below_cells * long_lag_scans <= 32, source,
@@ -125,10 +135,15 @@ void HitMaps::Reset(int width_cells, int height_cells) {
   const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   before.assign(n, 0);
   now.assign(n, 0);
+  free_now.assign(n, 0);
 }
 
 void HitMaps::AddBefore(int ix, int iy) {
   if (Inside(*this, ix, iy)) before[At(*this, ix, iy)] = 1;
+}
+
+void HitMaps::AddFreeNow(int ix, int iy) {
+  if (Inside(*this, ix, iy)) free_now[At(*this, ix, iy)] = 1;
 }
 
 void HitMaps::AddNow(int ix, int iy) {
@@ -151,10 +166,14 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
   };
   Hit hits[(2 * 8 + 1) * (2 * 8 + 1)];
   int n = 0;
+  int vacated = 0;
   const int p = options.patch_half_cells;
   for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
     for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
-      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) hits[n++] = {x, y};
+      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) {
+        hits[n++] = {x, y};
+        if (maps.free_now[At(maps, x, y)] != 0) ++vacated;
+      }
     }
   }
   const int half = search_half_cells;
@@ -179,7 +198,7 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
     }
   }
   return Decide(
-      n, half,
+      n, vacated, half,
       [&](const CellIndex& d) {
         return scores[static_cast<std::size_t>((d.iy + half) * side + d.ix + half)];
       },
@@ -190,9 +209,13 @@ FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
                                      int search_half_cells, const ScanFlowOptions& options) {
   const int p = options.patch_half_cells;
   int hits = 0;
+  int vacated = 0;  // previous hits this scan sees free
   for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
     for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
-      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) ++hits;
+      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) {
+        ++hits;
+        if (maps.free_now[At(maps, x, y)] != 0) ++vacated;
+      }
     }
   }
   // score(d) by the definition: 1 for a hit now at h + d, 1/2 for one next to it (doubled).
@@ -215,7 +238,7 @@ FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
     }
     return s;
   };
-  return Decide(hits, search_half_cells, score_at, options);
+  return Decide(hits, vacated, search_half_cells, score_at, options);
 }
 
 ScanFlow::ScanFlow(const ScanFlowOptions& options) : options_(options) { options_.Validate(); }
@@ -242,10 +265,16 @@ void ScanFlow::Prepare(const MeasurementGrid& z) {
         ToSeconds(z.stamp - history_.back().stamp) / ToSeconds(z.stamp - history_.front().stamp);
   }
   for (const std::size_t cell : z.touched) {
-    if (z.p_occupied[cell] <= 0.5f) continue;
+    const float p = z.p_occupied[cell];
+    if (p == 0.5f) continue;
     const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(cell));
-    maps_.AddNow(local.ix, local.iy);
-    if (has_long_pair_) long_maps_.AddNow(local.ix, local.iy);
+    if (p > 0.5f) {
+      maps_.AddNow(local.ix, local.iy);
+      if (has_long_pair_) long_maps_.AddNow(local.ix, local.iy);
+    } else {
+      maps_.AddFreeNow(local.ix, local.iy);
+      if (has_long_pair_) long_maps_.AddFreeNow(local.ix, local.iy);
+    }
   }
 }
 

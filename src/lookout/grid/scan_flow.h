@@ -24,6 +24,11 @@
 //              than ambiguity_radius_cells from best scores ambiguity_share * score(best) or
 //              more (a straight surface moving along itself: the aperture problem);
 //   unknown  otherwise, and when the patch holds fewer than min_patch_hits previous hits.
+// Where this scan sees free at least shortest_min_vacated_share of the patch's previous hits (the
+// occupancy left them), or score(0) is under shortest_below_stay_share * score(best) (staying
+// explains little), displacements longer than best are no rivals: a solid body matches itself
+// moved further into its own extent too, and the shortest displacement is its motion. Hits that
+// slide along a wall seen at a grazing angle leave nothing seen through and keep their rivals.
 //
 // Two baselines. One cycle resolves fast motion (a car's 10 cells) but not a walker's 0.6 cell
 // a cycle, which whole-cell matching calls staying; so a displacement under long_lag_below_cells
@@ -44,9 +49,9 @@
 namespace lookout::grid {
 
 struct ScanFlowOptions {
-  // Off: every cell without a trusted velocity gets the wide window. Off by default until it
-  // holds solid bodies (docs/grid.md, "The scan pair's displacement"): the inside of a solid box
-  // matches itself unshifted, so a solid 12 m/s box stays put (FastLongClusterTendsToVehicle).
+  // Off: every cell without a trusted velocity gets the wide window. Off by default: with it on,
+  // a hidden box is tracked, and the filter then holds it together instead of spreading it
+  // (OccludedObjectPersistsAndSpreads fails; docs/grid.md, "The scan pair's displacement").
   bool enabled = false;
   // Displacements searched, cells per cycle: +-12 cells is 22.5 m/s at 0.15 m and 12.5 Hz, the
   // wide window's reach.
@@ -58,6 +63,12 @@ struct ScanFlowOptions {
   double min_matched_share = 0.6;
   double ambiguity_radius_cells = 1.5;
   double ambiguity_share = 0.8;
+  // Where at least this share of the patch's previous hits is seen free now (vacated),
+  // displacements longer than best are no rivals of it: the shortest motion that explains the
+  // hits is taken (a solid body matches itself moved further into its own extent too).
+  double shortest_min_vacated_share = 0.25;
+  // ... or where score(0) is under this share of score(best) (staying explains little).
+  double shortest_below_stay_share = 0.5;
   // The second baseline (1: none) and the one-cycle displacement (cells, Chebyshev) under which
   // it is used; it searches +-long_lag_below_cells * long_lag_scans cells.
   int long_lag_scans = 6;
@@ -84,18 +95,21 @@ struct FlowMeasurement {
 
 // Two scans' hits on one window, row-major over the window's local cells (index iy * width +
 // ix): `before` 1 where the previous scan hit, `now` 2 where this scan hit and 1 next to such
-// a cell (the score of h + d above, doubled to stay integral).
+// a cell (the score of h + d above, doubled to stay integral), `free_now` 1 where this scan sees
+// free space.
 struct HitMaps {
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> before;
   std::vector<std::uint8_t> now;
+  std::vector<std::uint8_t> free_now;
 
   // Empty maps of the given size.
   void Reset(int width_cells, int height_cells);
   // Marks a hit of the previous / this scan at window-local (ix, iy); outside is ignored.
   void AddBefore(int ix, int iy);
   void AddNow(int ix, int iy);
+  void AddFreeNow(int ix, int iy);
 };
 
 // The measurement above, over one baseline, for the window-local cell `cell`, displacements

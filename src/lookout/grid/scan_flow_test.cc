@@ -25,11 +25,13 @@ std::vector<CellIndex> CarOutline(int x0, int y0) {
   return cells;
 }
 
-HitMaps Pair(const std::vector<CellIndex>& before, const std::vector<CellIndex>& now) {
+HitMaps Pair(const std::vector<CellIndex>& before, const std::vector<CellIndex>& now,
+             const std::vector<CellIndex>& free_now = {}) {
   HitMaps m;
   m.Reset(kSide, kSide);
   for (const CellIndex& c : before) m.AddBefore(c.ix, c.iy);
   for (const CellIndex& c : now) m.AddNow(c.ix, c.iy);
+  for (const CellIndex& c : free_now) m.AddFreeNow(c.ix, c.iy);
   return m;
 }
 
@@ -70,6 +72,31 @@ TEST(ScanFlowTest, AStaticOutlineStays) {
   EXPECT_TRUE(side.ambiguous);
 }
 
+// A solid slab (20 x 2 cells) moving 4 cells along x: its rear edge's patch matches the slab
+// moved 4, 5, 6... cells (further into itself), but the scan sees through where the rear was:
+// the shortest displacement, 4, is its motion. Without that rule the rear edge is ambiguous.
+TEST(ScanFlowTest, ASolidBodyMovesByTheShortestDisplacementWhereItLeftFreeSpace) {
+  const ScanFlowOptions options;
+  std::vector<CellIndex> before, now, free_now;
+  for (int y = 20; y < 22; ++y) {
+    for (int x = 10; x < 30; ++x) {
+      before.push_back({x, y});
+      now.push_back({x + 4, y});
+    }
+    for (int x = 10; x < 14; ++x) free_now.push_back({x, y});
+  }
+  const FlowMeasurement seen_through =
+      MeasureFlow(Pair(before, now, free_now), {11, 20}, options.search_half_cells, options);
+  EXPECT_EQ(seen_through.kind, FlowKind::kMoves);
+  EXPECT_EQ(seen_through.displacement, (CellIndex{4, 0}));
+  ScanFlowOptions no_shortest = options;
+  no_shortest.shortest_min_vacated_share = 1.0;
+  no_shortest.shortest_below_stay_share = 0.0;
+  const FlowMeasurement without =
+      MeasureFlow(Pair(before, now, free_now), {11, 20}, options.search_half_cells, no_shortest);
+  EXPECT_EQ(without.kind, FlowKind::kUnknown);
+}
+
 // A straight surface moving along itself (the aperture problem): no displacement is claimed.
 TEST(ScanFlowTest, ALineSlidingAlongItselfIsNoMotion) {
   const ScanFlowOptions options;
@@ -98,15 +125,16 @@ TEST(ScanFlowTest, FastPathMatchesTheDefinitionOnRandomScans) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     std::uniform_int_distribution<int> cell(0, kSide - 1), shift(-4, 4), keep(0, 9);
-    std::vector<CellIndex> before, now;
+    std::vector<CellIndex> before, now, free_now;
     const CellIndex d{shift(rng), shift(rng)};
     for (int k = 0; k < 300; ++k) {
       const CellIndex c{cell(rng), cell(rng)};
       before.push_back(c);
       if (keep(rng) < 8) now.push_back({c.ix + d.ix, c.iy + d.iy});  // most moved, some lost
       if (keep(rng) == 0) now.push_back({cell(rng), cell(rng)});     // and clutter
+      if (keep(rng) < 4) free_now.push_back(c);                      // some seen through
     }
-    const HitMaps maps = Pair(before, now);
+    const HitMaps maps = Pair(before, now, free_now);
     for (int k = 0; k < 40; ++k) {
       const CellIndex at{cell(rng), cell(rng)};
       ExpectSame(MeasureFlow(maps, at, options.search_half_cells, options),
