@@ -206,6 +206,30 @@ BENCHMARK(BM_ExtendedGridUpdateSimJunction)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// The same cycle with the scan pair's windows on (grid/scan_flow.h, --grid-scan-flow on): the
+// measurement of every source that would get the wide window, and their fine windows after.
+void BM_ExtendedGridUpdateSimJunctionScanFlow(benchmark::State& state) {
+  static const app::GridCycleInput input = [] {
+    FilterOptions filter;
+    filter.scan_flow.enabled = true;
+    return app::PrepareGridCycle(io::LoadDefaultScenario(), 4.0, filter);
+  }();
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  ExtendedGrid grid = input.before;
+  for (auto _ : state) {
+    state.PauseTiming();
+    grid = input.before;
+    state.ResumeTiming();
+    arena.execute([&] { grid.Update(input.z, input.dt_s); });
+  }
+  Counters(state, grid);
+}
+BENCHMARK(BM_ExtendedGridUpdateSimJunctionScanFlow)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 void BM_ReferenceUpdateSimJunction(benchmark::State& state) {
   const app::GridCycleInput& input = SimJunction();
   GridLayers layers = input.before.layers();

@@ -25,10 +25,11 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
-GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s) {
+GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s,
+                                const grid::FilterOptions& filter) {
   const sim::Simulator simulator(scenario);
   const sim::SensorLog log = simulator.Run(1);
-  GridStage stage;
+  GridStage stage(grid::GridOptions{}, filter);
   std::size_t next_odometry = 0;
   std::optional<std::size_t> timed;
   for (std::size_t k = 0; k < log.lidar.size(); ++k) {

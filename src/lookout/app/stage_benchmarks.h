@@ -29,7 +29,9 @@ struct GridCycleInput {
   grid::MeasurementGrid z;
   double dt_s = 0.0;
 };
-GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s);
+// `filter`: the grid's filter options (the scan pair's memory, scan_flow.h, comes with the state).
+GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s,
+                                const grid::FilterOptions& filter = {});
 
 // One grid update on `scenario`'s scan at the first lidar frame at or after `at_s`, the grid
 // having run every earlier scan (a steady state: tracked structure, movers, newly revealed
