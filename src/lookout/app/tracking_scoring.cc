@@ -1,6 +1,7 @@
 #include "lookout/app/tracking_scoring.h"
 
 #include <cmath>
+#include <limits>
 
 namespace lookout::app {
 namespace {
@@ -68,6 +69,26 @@ std::vector<bool> CountableActors(const sim::TruthFrame& truth, const SensorReac
   return out;
 }
 
+std::vector<eval::PointObject> WithoutTracksOnUncountedActors(
+    const std::vector<eval::PointObject>& tracks, const sim::TruthFrame& truth,
+    const std::vector<bool>& countable, double match_distance_m) {
+  std::vector<eval::PointObject> out;
+  out.reserve(tracks.size());
+  for (const eval::PointObject& t : tracks) {
+    double nearest = std::numeric_limits<double>::infinity();
+    bool nearest_counts = true;
+    for (std::size_t i = 0; i < truth.actors.size(); ++i) {
+      const double d = (truth.actors[i].state.pose.translation - t.position_m).norm();
+      if (d < nearest) {
+        nearest = d;
+        nearest_counts = countable[i];
+      }
+    }
+    if (nearest_counts || nearest > match_distance_m) out.push_back(t);
+  }
+  return out;
+}
+
 TrackingScorer::TrackingScorer(const Pose2& world_from_odom, const SensorReach& reach)
     : world_from_odom_(world_from_odom), reach_(reach) {}
 
@@ -82,11 +103,15 @@ void TrackingScorer::Observe(const sim::TruthFrame& truth,
     }
   }
   const Pose2 vehicle_from_world = truth.ego.state.pose.Inverse();
-  tracker_.AddFrame(truths, TrackPoints(tracks, world_from_odom_, vehicle_from_world, reach_));
+  const double match_m = eval::TrackingMetricOptions{}.match_distance_m;
+  const auto scored = [&](const std::vector<tracking::Track>& t) {
+    return WithoutTracksOnUncountedActors(
+        TrackPoints(t, world_from_odom_, vehicle_from_world, reach_), truth, countable, match_m);
+  };
+  tracker_.AddFrame(truths, scored(tracks));
   if (baseline_tracks) {
     has_baseline_ = true;
-    baseline_.AddFrame(truths,
-                       TrackPoints(*baseline_tracks, world_from_odom_, vehicle_from_world, reach_));
+    baseline_.AddFrame(truths, scored(*baseline_tracks));
   }
 }
 

@@ -11,7 +11,10 @@
 // user is still there, and the tracker is meant to coast through the occlusion. One never seen
 // yet cannot be tracked by anyone, and is left out until it is. Tracks are scored over the same
 // region: a track outside the sensors' reach (one coasting on behind the ego, say) is neither a
-// match nor a false track, as the truth there is not counted either.
+// match nor a false track, as the truth there is not counted either. Nor is a track on an actor
+// that does not count (its nearest actor, within the match distance): a car whose centre has
+// just left the lidar's fan while its front, where the track is, has not; the lidar objects'
+// scoring treats an object on an actor that does not count the same way (docs/grid.md).
 //
 // What is compared: the actor's footprint centre and the track's position (the tracking stage
 // tracks centres, app/tracking_stage.h), in the world: the track through the odometry frame's
@@ -44,6 +47,12 @@ struct SensorReach {
 // actor's scenario index; grown as needed). Uses the true ego pose.
 std::vector<bool> CountableActors(const sim::TruthFrame& truth, const SensorReach& reach,
                                   std::vector<bool>& seen);
+
+// `tracks` (world) without those whose nearest actor of `truth` does not count (`countable`,
+// indexed as truth.actors) and lies within `match_distance_m` of them. Pure.
+std::vector<eval::PointObject> WithoutTracksOnUncountedActors(
+    const std::vector<eval::PointObject>& tracks, const sim::TruthFrame& truth,
+    const std::vector<bool>& countable, double match_distance_m);
 
 class TrackingScorer {
  public:

@@ -1,0 +1,43 @@
+#include "lookout/app/tracking_scoring.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace lookout::app {
+namespace {
+
+sim::ActorTruth ActorAt(int index, double x, double y) {
+  sim::ActorTruth a;
+  a.index = index;
+  a.state.pose = Pose2(x, y, 0.0);
+  return a;
+}
+
+std::vector<std::int64_t> Ids(const std::vector<eval::PointObject>& objects) {
+  std::vector<std::int64_t> ids;
+  for (const eval::PointObject& o : objects) ids.push_back(o.id);
+  return ids;
+}
+
+// A track on an actor that does not count is neither a match nor a false track; a track on
+// none, or nearer a counted actor, stays to be scored.
+TEST(TrackingScorerTest, TracksOnUncountedActorsAreLeftOut) {
+  sim::TruthFrame truth;
+  truth.actors = {ActorAt(0, 0.0, 0.0), ActorAt(1, 10.0, 0.0)};
+  const std::vector<bool> countable = {true, false};
+  const std::vector<eval::PointObject> tracks = {
+      {1, {0.5, 0.0}},   // on the counted actor
+      {2, {11.0, 0.5}},  // on the uncounted one: left out
+      {3, {20.0, 0.0}},  // on nothing: a false track
+      {4, {7.5, 0.0}},   // nearest the uncounted actor but beyond the match distance
+      {5, {8.1, 0.0}},   // within it: left out
+  };
+  EXPECT_EQ(Ids(WithoutTracksOnUncountedActors(tracks, truth, countable, 2.0)),
+            (std::vector<std::int64_t>{1, 3, 4}));
+  // With every actor counted, nothing is left out.
+  EXPECT_EQ(WithoutTracksOnUncountedActors(tracks, truth, {true, true}, 2.0).size(), 5u);
+}
+
+}  // namespace
+}  // namespace lookout::app
