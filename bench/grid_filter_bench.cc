@@ -11,6 +11,7 @@
 // tracked movers, newly revealed occupancy at their edges), as on the road.
 
 #include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +19,6 @@
 #include <optional>
 #include <utility>
 #include <vector>
-
-#include <tbb/task_arena.h>
 
 #include "bench_scans.h"
 #include "lookout/app/stage_benchmarks.h"
@@ -66,10 +65,10 @@ std::vector<sim::Shape> StaticBoxes() {
 
 std::vector<Mover> Movers() {
   return {
-      {Vector2d(-14.0, -3.6), Vector2d(-9.5, -1.8), Vector2d(10.0, 0.0)},   // ahead of the ego
-      {Vector2d(0.8, -26.0), Vector2d(2.6, -21.5), Vector2d(0.0, 15.0)},    // crossing
-      {Vector2d(12.0, 2.3), Vector2d(16.5, 4.1), Vector2d(-12.0, 0.0)},     // oncoming
-      {Vector2d(-6.0, 11.0), Vector2d(-5.5, 11.5), Vector2d(1.5, 0.0)},     // pedestrians
+      {Vector2d(-14.0, -3.6), Vector2d(-9.5, -1.8), Vector2d(10.0, 0.0)},  // ahead of the ego
+      {Vector2d(0.8, -26.0), Vector2d(2.6, -21.5), Vector2d(0.0, 15.0)},   // crossing
+      {Vector2d(12.0, 2.3), Vector2d(16.5, 4.1), Vector2d(-12.0, 0.0)},    // oncoming
+      {Vector2d(-6.0, 11.0), Vector2d(-5.5, 11.5), Vector2d(1.5, 0.0)},    // pedestrians
       {Vector2d(6.0, -11.5), Vector2d(6.5, -11.0), Vector2d(-1.5, 0.0)},
   };
 }
@@ -112,9 +111,9 @@ void Counters(benchmark::State& state, const ExtendedGrid& after) {
   state.counters["cell_updates_per_s"] = benchmark::Counter(
       static_cast<double>(after.geometry().CellCount()) * static_cast<double>(state.iterations()),
       benchmark::Counter::kIsRate);
-  state.counters["sources_per_s"] = benchmark::Counter(
-      static_cast<double>(s.sources) * static_cast<double>(state.iterations()),
-      benchmark::Counter::kIsRate);
+  state.counters["sources_per_s"] =
+      benchmark::Counter(static_cast<double>(s.sources) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
 }
 
 // One update of the full 400 x 400 grid; Arg = TBB threads.
@@ -178,14 +177,12 @@ std::vector<float> AllLayers(const ExtendedGrid& grid) {
   grid.Update(input.z, input.dt_s);
 }
 
-void BM_ExtendedGridUpdateSimJunction(benchmark::State& state) {
-  const app::GridCycleInput& input = SimJunction();
-  static const std::vector<float> one_thread = [&] {
-    tbb::task_arena one(1);
-    ExtendedGrid g = input.before;
-    one.execute([&] { g.Update(input.z, input.dt_s); });
-    return AllLayers(g);
-  }();
+// Times the update of `input` on state.range(0) TBB threads, and fails the benchmark when its
+// output differs from the one-thread output.
+void TimeJunctionUpdates(benchmark::State& state, const app::GridCycleInput& input) {
+  tbb::task_arena one(1);
+  ExtendedGrid reference = input.before;
+  one.execute([&] { reference.Update(input.z, input.dt_s); });
   tbb::task_arena arena(static_cast<int>(state.range(0)));
   ExtendedGrid grid = input.before;
   for (auto _ : state) {
@@ -194,11 +191,15 @@ void BM_ExtendedGridUpdateSimJunction(benchmark::State& state) {
     state.ResumeTiming();
     arena.execute([&] { TimedSimJunctionUpdate(grid, input); });
   }
-  if (AllLayers(grid) != one_thread) {
+  if (AllLayers(grid) != AllLayers(reference)) {
     state.SkipWithError("the output differs from the one-thread output");
     return;
   }
   Counters(state, grid);
+}
+
+void BM_ExtendedGridUpdateSimJunction(benchmark::State& state) {
+  TimeJunctionUpdates(state, SimJunction());
 }
 BENCHMARK(BM_ExtendedGridUpdateSimJunction)
     ->Arg(1)
@@ -214,15 +215,7 @@ void BM_ExtendedGridUpdateSimJunctionScanFlow(benchmark::State& state) {
     filter.scan_flow.enabled = true;
     return app::PrepareGridCycle(io::LoadDefaultScenario(), 4.0, filter);
   }();
-  tbb::task_arena arena(static_cast<int>(state.range(0)));
-  ExtendedGrid grid = input.before;
-  for (auto _ : state) {
-    state.PauseTiming();
-    grid = input.before;
-    state.ResumeTiming();
-    arena.execute([&] { grid.Update(input.z, input.dt_s); });
-  }
-  Counters(state, grid);
+  TimeJunctionUpdates(state, input);
 }
 BENCHMARK(BM_ExtendedGridUpdateSimJunctionScanFlow)
     ->Arg(1)

@@ -73,69 +73,63 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
   // --- eq. 8-9: Psi over each active cell's window.
   std::vector<Source> sources;
   std::vector<long> source_of(n, -1);
-  for (int ly = 0; ly < geometry.height(); ++ly) {
-    for (int lx = 0; lx < geometry.width(); ++lx) {
-      const std::size_t cell = geometry.StorageIndexOfLocal({lx, ly});
-      if (!IsSource(static_cast<double>(occupancy[cell]), static_cast<double>(seen[cell]),
-                    options)) {
-        continue;
+  // The sources in the windows' order (row-major over the window).
+  for (std::size_t k = 0; k < window_locals.size(); ++k) {
+    const int lx = window_locals[k].ix, ly = window_locals[k].iy;
+    const std::size_t cell = geometry.StorageIndexOfLocal(window_locals[k]);
+    Source s;
+    s.cell = cell;
+    s.local = window_locals[k];
+    s.occupancy = static_cast<double>(occupancy[cell]);
+    // As the fast path: the velocity predicted in float, the layers' type.
+    s.vx = static_cast<double>(window_vx[k]);
+    s.vy = static_cast<double>(window_vy[k]);
+    s.confidence = static_cast<double>(confidence[cell]);
+    const SearchWindow& w = windows[k];
+    // The window's samples: the lattice, then the dense core's displacements off it.
+    std::vector<CellIndex> displacements;
+    for (int v = 0; v < w.size(); ++v) {
+      for (int u = 0; u < w.size(); ++u) {
+        displacements.push_back(
+            {w.center.ix + w.stride * (u - w.half), w.center.iy + w.stride * (v - w.half)});
       }
-      Source s;
-      s.cell = cell;
-      s.local = {lx, ly};
-      s.occupancy = static_cast<double>(occupancy[cell]);
-      // As the fast path: the velocity predicted in float, the layers' type.
-      s.vx = static_cast<double>(
-          static_cast<float>(PredictVelocity(static_cast<double>(vx[cell]), dt_s, options)));
-      s.vy = static_cast<double>(
-          static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
-      s.confidence = static_cast<double>(confidence[cell]);
-      const SearchWindow& w = windows[sources.size()];
-      // The window's samples: the lattice, then the dense core's displacements off it.
-      std::vector<CellIndex> displacements;
-      for (int v = 0; v < w.size(); ++v) {
-        for (int u = 0; u < w.size(); ++u) {
-          displacements.push_back({w.center.ix + w.stride * (u - w.half),
-                                   w.center.iy + w.stride * (v - w.half)});
-        }
-      }
-      if (w.stride > 1) {
-        for (int y = -w.dense_half; y <= w.dense_half; ++y) {
-          for (int x = -w.dense_half; x <= w.dense_half; ++x) {
-            if (x % w.stride != 0 || y % w.stride != 0) {
-              displacements.push_back({w.center.ix + x, w.center.iy + y});
-            }
+    }
+    if (w.stride > 1) {
+      for (int y = -w.dense_half; y <= w.dense_half; ++y) {
+        for (int x = -w.dense_half; x <= w.dense_half; ++x) {
+          if (x % w.stride != 0 || y % w.stride != 0) {
+            displacements.push_back({w.center.ix + x, w.center.iy + y});
           }
         }
       }
-      double g_sum = 0.0, stay_sum = 0.0;
-      for (const CellIndex& d : displacements) {
-        Move m;
-        m.displacement = d;
-        const CellIndex t{lx + m.displacement.ix, ly + m.displacement.iy};
-        if (t.ix >= 0 && t.iy >= 0 && t.ix < geometry.width() && t.iy < geometry.height()) {
-          m.target = static_cast<long>(geometry.StorageIndexOfLocal(t));
-        }
-        const double ex = m.displacement.ix - w.mean_x_cells;
-        const double ey = m.displacement.iy - w.mean_y_cells;
-        g_sum += Gaussian(ex, ey, w.sigma_cells);
-        stay_sum += Gaussian(ex, ey, w.stay_sigma_cells);
-        s.moves.push_back(m);
-      }
-      // The stay component is the static hypothesis only where the prediction is no motion.
-      const bool static_prediction =
-          std::hypot(w.mean_x_cells, w.mean_y_cells) < 0.5 && w.stay_weight > 0.0;
-      for (Move& m : s.moves) {
-        const double ex = m.displacement.ix - w.mean_x_cells;
-        const double ey = m.displacement.iy - w.mean_y_cells;
-        const double move = (1.0 - w.stay_weight) * Gaussian(ex, ey, w.sigma_cells) / g_sum;
-        const double stay = w.stay_weight * Gaussian(ex, ey, w.stay_sigma_cells) / stay_sum;
-        m.p = move + stay;
-        m.stay_share = static_prediction && m.p > 0.0 ? stay / m.p : 0.0;
-      }
-      source_of[cell] = static_cast<long>(sources.size());
-      sources.push_back(std::move(s));
     }
+    double g_sum = 0.0, stay_sum = 0.0;
+    for (const CellIndex& d : displacements) {
+      Move m;
+      m.displacement = d;
+      const CellIndex t{lx + m.displacement.ix, ly + m.displacement.iy};
+      if (t.ix >= 0 && t.iy >= 0 && t.ix < geometry.width() && t.iy < geometry.height()) {
+        m.target = static_cast<long>(geometry.StorageIndexOfLocal(t));
+      }
+      const double ex = m.displacement.ix - w.mean_x_cells;
+      const double ey = m.displacement.iy - w.mean_y_cells;
+      g_sum += Gaussian(ex, ey, w.sigma_cells);
+      stay_sum += Gaussian(ex, ey, w.stay_sigma_cells);
+      s.moves.push_back(m);
+    }
+    // The stay component is the static hypothesis only where the prediction is no motion.
+    const bool static_prediction =
+        std::hypot(w.mean_x_cells, w.mean_y_cells) < 0.5 && w.stay_weight > 0.0;
+    for (Move& m : s.moves) {
+      const double ex = m.displacement.ix - w.mean_x_cells;
+      const double ey = m.displacement.iy - w.mean_y_cells;
+      const double move = (1.0 - w.stay_weight) * Gaussian(ex, ey, w.sigma_cells) / g_sum;
+      const double stay = w.stay_weight * Gaussian(ex, ey, w.stay_sigma_cells) / stay_sum;
+      m.p = move + stay;
+      m.stay_share = static_prediction && m.p > 0.0 ? stay / m.p : 0.0;
+    }
+    source_of[cell] = static_cast<long>(sources.size());
+    sources.push_back(std::move(s));
   }
 
   // --- eq. 10: Pw = Psi P(M(i) = 1 | z), renormalised.
@@ -177,9 +171,9 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
       }
       if (options.enable_rigidity_constraint) {
         for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-          const double link = std::min(
-              1.0, options.rigidity_link_gain *
-                       static_cast<double>(layers.Values(ids.rigidity[d])[s.cell]));
+          const double link =
+              std::min(1.0, options.rigidity_link_gain *
+                                static_cast<double>(layers.Values(ids.rigidity[d])[s.cell]));
           if (link <= 0.0) continue;
           const CellIndex nl{s.local.ix + kNeighbourOffsets[d].ix,
                              s.local.iy + kNeighbourOffsets[d].iy};
