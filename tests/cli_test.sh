@@ -62,9 +62,10 @@ case "$case_name" in
     "$lookout" run --no-such-flag 2>/dev/null; code2=$?
     "$lookout" run "$work/missing.yaml" 2>"$work/stderr3"; code3=$?
     "$lookout" run --snapshot 99 --out "$work/out" 2>/dev/null; code4=$?
+    "$lookout" run --grid-scan-flow maybe --out "$work/out" 2>/dev/null; code5=$?
     set -e
-    [[ $code1 == 2 && $code2 == 2 && $code3 == 2 && $code4 == 2 ]] ||
-      fail "exit codes $code1 $code2 $code3 $code4"
+    [[ $code1 == 2 && $code2 == 2 && $code3 == 2 && $code4 == 2 && $code5 == 2 ]] ||
+      fail "exit codes $code1 $code2 $code3 $code4 $code5"
     grep -q "missing.yaml" "$work/stderr3" || fail "missing file not named"
     [[ ! -e "$work/out" ]] || fail "output written for a bad option"
     ;;
@@ -138,6 +139,14 @@ case "$case_name" in
     "$lookout" run "$work/short.yaml" --out "$work/b" --threads 2 >/dev/null
     cmp "$work/a/recording.mcap" "$work/b/recording.mcap" || fail "1 vs 2 threads differ"
     grep -q '"timing.frames": 38' "$work/a/metrics.json" || fail "timing.frames should be 38"
+    # The grid's scan-pair windows (off by default): the same bytes with 1 and 2 threads, and
+    # not the default's bytes (the option reaches the grid).
+    "$lookout" run "$work/short.yaml" --out "$work/fa" --threads 1 --grid-scan-flow on >/dev/null
+    "$lookout" run "$work/short.yaml" --out "$work/fb" --threads 2 --grid-scan-flow on >/dev/null
+    cmp "$work/fa/recording.mcap" "$work/fb/recording.mcap" || fail "scan flow: 1 vs 2 threads differ"
+    if cmp -s "$work/a/recording.mcap" "$work/fa/recording.mcap"; then
+      fail "--grid-scan-flow on changed nothing"
+    fi
     node "$src/tests/node/read_mcap.mjs" "$work/a/recording.mcap" >"$work/read.json"
     node -e '
       const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
