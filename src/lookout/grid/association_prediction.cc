@@ -136,7 +136,6 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   a.confidence.resize(sources);
   a.class_pmf.resize(sources * kGridClassCount);
   a.rigidity.resize(sources * kNeighbourCount);
-  a.window.resize(sources);
   a.first_entry.resize(sources + 1);
   a.first_entry[0] = 0;
   ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {

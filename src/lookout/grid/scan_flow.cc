@@ -123,6 +123,8 @@ void ScanFlowOptions::Validate(const std::string& source) const {
   Require(InUnit(ambiguity_share), source, "ambiguity_share", "must be in [0, 1]");
   Require(InUnit(shortest_min_vacated_share), source, "shortest_min_vacated_share",
           "must be in [0, 1]");
+  Require(InUnit(shortest_below_stay_share), source, "shortest_below_stay_share",
+          "must be in [0, 1]");
   Require(long_lag_scans >= 1 && long_lag_scans <= 16, source, "long_lag_scans",
           "must be in [1, 16]");
   Require(long_lag_below_cells >= 1 && long_lag_below_cells * long_lag_scans <= 32, source,
@@ -177,24 +179,27 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
     }
   }
   const int half = search_half_cells;
+  const auto no_scores = [](const CellIndex&) { return 0; };
+  if (n < options.min_patch_hits) return Decide(n, vacated, half, no_scores, options);
   // Scores of the whole search square, row-major, computed once (the decision reads some twice).
+  // Only the side^2 entries in use are touched: zeroing all 65^2 on every call cost more than a
+  // walker's search (the fill only lets the compiler see that each one read is written).
   const int side = 2 * half + 1;
-  std::array<int, (2 * 32 + 1) * (2 * 32 + 1)> scores{};
-  if (n >= options.min_patch_hits) {
-    for (int dy = -half; dy <= half; ++dy) {
-      for (int dx = -half; dx <= half; ++dx) {
-        int s = 0;
-        for (int k = 0; k < n; ++k) {
-          const int x = hits[k].x + dx;
-          const int y = hits[k].y + dy;
-          if (Inside(maps, x, y)) {
-            s += maps.now[At(maps, x, y)];
-          } else {
-            s += OutsideScore(maps, x, y);
-          }
+  std::array<int, (2 * 32 + 1) * (2 * 32 + 1)> scores;
+  std::fill_n(scores.begin(), side * side, 0);
+  for (int dy = -half; dy <= half; ++dy) {
+    for (int dx = -half; dx <= half; ++dx) {
+      int s = 0;
+      for (int k = 0; k < n; ++k) {
+        const int x = hits[k].x + dx;
+        const int y = hits[k].y + dy;
+        if (Inside(maps, x, y)) {
+          s += maps.now[At(maps, x, y)];
+        } else {
+          s += OutsideScore(maps, x, y);
         }
-        scores[static_cast<std::size_t>((dy + half) * side + dx + half)] = s;
       }
+      scores[static_cast<std::size_t>((dy + half) * side + dx + half)] = s;
     }
   }
   return Decide(
