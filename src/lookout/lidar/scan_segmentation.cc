@@ -59,19 +59,54 @@ std::pair<std::size_t, double> FurthestFromChord(std::span<const Vector2d> point
   return {best, best_distance};
 }
 
-// Half-open index range [begin, end) of the cluster's points on its front side.
-std::pair<std::size_t, std::size_t> FrontSide(std::span<const Vector2d> points,
-                                              const SegmentationOptions& options) {
-  if (points.size() < 3) return {0, points.size()};
+// The cluster's points on its front side, seen from `lidar`: the half-open index range
+// [begin, end), and whether the cluster is a round body's arc.
+//
+// An L is two sides of a box; the front is the side the truth and the camera take
+// (stereo::FrontSegmentFacing): the one the ray from the box's centre to the viewer leaves
+// through. Both sides of an L are seen end to end (a convex body hides nothing of the sides it
+// shows), so the L is the box: the corner, the sides' directions and lengths, the centre half
+// way along both. The ray leaves through side 1 (normal along side 2) when
+// |u . d2| / (l2 / 2) >= |u . d1| / (l1 / 2), u from the centre to the viewer, d unit. Seen
+// from afar this is the side that spans the larger angle; near, it is not (a cyclist 5 m
+// ahead and aside shows more returns on its end than its side while the ray from its middle
+// leaves through the side). An end hidden by something nearer makes its side look shorter,
+// which only errs towards the other side where the two are close.
+//
+// A small L (both sides under min_box_side_m) whose corner lies mid-way through its returns is
+// a round body's arc (a pedestrian, a pole): seen from outside, an arc is symmetric about the
+// ray to its centre, and its halves' chords meet at a right angle as an L's sides do. A box's
+// end seen nearly along its side shows the side over a few returns only (a cyclist head-on:
+// its end and the start of its side, which grazes the beams and breaks off), so stays an L.
+struct FrontSideRange {
+  std::size_t begin = 0, end = 0;
+  bool round_body = false;
+};
+
+FrontSideRange FrontSide(std::span<const Vector2d> points, const Vector2d& lidar,
+                         const SegmentationOptions& options) {
+  const FrontSideRange whole{0, points.size(), false};
+  if (points.size() < 3) return whole;
   const auto [corner, distance] = FurthestFromChord(points);
-  const double threshold = std::max(options.corner_split_m,
-                                    options.breakpoint_noise_sigmas * options.range_noise_m);
-  if (distance <= threshold) return {0, points.size()};
-  // The corner belongs to both sides; the side with more returns is the front.
-  const std::size_t first_side = corner + 1;
-  const std::size_t second_side = points.size() - corner;
-  return first_side >= second_side ? std::pair<std::size_t, std::size_t>{0, corner + 1}
-                                   : std::pair<std::size_t, std::size_t>{corner, points.size()};
+  const double threshold =
+      std::max(options.corner_split_m, options.breakpoint_noise_sigmas * options.range_noise_m);
+  if (distance <= threshold) return whole;
+  // The corner belongs to both sides.
+  const Vector2d side_1 = points.front() - points[corner];
+  const Vector2d side_2 = points.back() - points[corner];
+  const double l1 = side_1.norm();
+  const double l2 = side_2.norm();
+  const std::size_t returns_1 = corner + 1;
+  const std::size_t returns_2 = points.size() - corner;
+  if (std::max(l1, l2) < options.min_box_side_m &&
+      std::max(returns_1, returns_2) < 2 * std::min(returns_1, returns_2)) {
+    return {0, points.size(), true};
+  }
+  const Vector2d to_lidar = lidar - (points[corner] + 0.5 * (side_1 + side_2));
+  const bool first_is_front =
+      std::abs(to_lidar.dot(side_2)) * l1 * l1 >= std::abs(to_lidar.dot(side_1)) * l2 * l2;
+  return first_is_front ? FrontSideRange{0, corner + 1, false}
+                        : FrontSideRange{corner, points.size(), false};
 }
 
 // Spacing of two neighbouring beams where they meet a surface of direction `along`, at range r.
@@ -105,8 +140,8 @@ double HiddenExtent(const LidarScan& scan, std::size_t end_beam, int step, const
     if (lambda <= 0.0) return cap_m;
     const double extent = outward.dot(lidar + lambda * beam - end_point);
     if (extent >= cap_m) return cap_m;
-    const bool hidden = IsReturn(scan, i, 0.0) &&
-                        static_cast<double>(scan.ranges_m[i]) < lambda - margin_m;
+    const bool hidden =
+        IsReturn(scan, i, 0.0) && static_cast<double>(scan.ranges_m[i]) < lambda - margin_m;
     if (!hidden) return std::max(extent, 0.0);
   }
   return cap_m;
@@ -126,14 +161,29 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
 
   // Not a structured binding: the lambda below captures both, which clang 14 does not allow of
   // bindings (C++20 does; the sanitizer and fuzz builds use clang).
-  const std::pair<std::size_t, std::size_t> side = FrontSide(points, options);
-  const std::size_t begin = side.first;
-  const std::size_t end = side.second;
+  const FrontSideRange side = FrontSide(points, scan.mount.translation, options);
+  const std::size_t begin = side.begin;
+  const std::size_t end = side.end;
   const std::span<const Vector2d> front(points.data() + begin, end - begin);
   const Line line = FitLine(front);
   o.front_start_m = Project(line, front.front());
   o.front_end_m = Project(line, front.back());
   o.point_m = 0.5 * (o.front_start_m + o.front_end_m);
+  if (side.round_body) {
+    // The point is the middle of the side facing the lidar, which for a round body is its
+    // nearest point, r in front of its centre on the ray. The beams sample the arc evenly
+    // across the ray, so the line through the returns' mean lies (pi / 4) r in front of the
+    // centre: the segment moves (1 - pi / 4) r towards the lidar, r half its chord.
+    const Vector2d from_lidar = o.point_m - scan.mount.translation;
+    const double range = from_lidar.norm();
+    const double radius = 0.5 * (o.front_end_m - o.front_start_m).norm();
+    if (range > 0.0) {
+      const Vector2d shift = -(1.0 - 0.25 * kPi) * radius / range * from_lidar;
+      o.front_start_m += shift;
+      o.front_end_m += shift;
+      o.point_m += shift;
+    }
+  }
 
   // Covariance of the middle in the segment's axes (u along, v across).
   const Vector2d u = line.direction;
@@ -173,8 +223,8 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
   Matrix2d axes;
   axes.col(0) = u;
   axes.col(1) = v;
-  o.point_covariance = axes * Eigen::Vector2d(var_along, var_across).asDiagonal() *
-                       axes.transpose();
+  o.point_covariance =
+      axes * Eigen::Vector2d(var_along, var_across).asDiagonal() * axes.transpose();
 
   Vector2d centroid = Vector2d::Zero();
   for (const Vector2d& p : points) centroid += p;
@@ -225,6 +275,8 @@ void SegmentationOptions::Validate(const std::string& source) const {
   check(min_points >= 1, "min_points", "must be >= 1");
   check(std::isfinite(corner_split_m) && corner_split_m > 0.0, "corner_split_m",
         "must be finite and > 0");
+  check(std::isfinite(min_box_side_m) && min_box_side_m >= 0.0, "min_box_side_m",
+        "must be finite and >= 0");
   check(std::isfinite(max_side_length_m) && max_side_length_m > 0.0, "max_side_length_m",
         "must be finite and > 0");
   check(std::isfinite(velocity_unknown_sigma_mps) && velocity_unknown_sigma_mps > 0.0,
@@ -269,9 +321,8 @@ std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOp
       const std::size_t gap = i - last;
       const double r_prev = last_point.norm();
       const bool bridged = gap <= static_cast<std::size_t>(options.max_gap_beams) + 1;
-      if (!bridged ||
-          (p - last_point).norm() > BreakpointDistance(r_prev, static_cast<double>(gap) * dphi,
-                                                       options)) {
+      if (!bridged || (p - last_point).norm() >
+                          BreakpointDistance(r_prev, static_cast<double>(gap) * dphi, options)) {
         finish();
       }
     }

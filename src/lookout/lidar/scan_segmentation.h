@@ -17,10 +17,12 @@
 //
 // Per cluster (a LidarObject, vehicle frame):
 //   front segment  the total-least-squares line of the points, split once at the point
-//                  furthest from it when the points form an L (two sides of a box); the side
-//                  with more returns is the front (the one facing the lidar: it spans the
-//                  larger angle, as stereo::FrontSegmentFacing defines it for the camera).
-//                  Its ends are the projections of its first and last points on the line.
+//                  furthest from it when the points form an L (two sides of a box); the front
+//                  is the side the ray from the box's centre to the lidar leaves through, as
+//                  stereo::FrontSegmentFacing defines it for the camera and the truth. A small
+//                  L symmetric in its returns is a round body's arc: kept whole, moved towards
+//                  the lidar to the body's nearest point. Its ends are the projections of its
+//                  first and last points on the line.
 //   point_m        the front segment's middle; covariance from the range and bearing noise
 //                  (the line's offset, sigma_r^2 / n across it) and from where the ends really
 //                  are, along it: the object's edge lies anywhere between the last return on
@@ -58,6 +60,11 @@ struct SegmentationOptions {
   // A cluster is split into two sides when a point lies further than this from the line of
   // all its points and further than breakpoint_noise_sigmas range sigmas.
   double corner_split_m = 0.1;
+  // ... and when one of the two sides is at least this long. A round body (a pedestrian, a
+  // pole) shows an arc that bends by its radius, whose halves are chords under r sqrt 2
+  // (0.49 m for the catalogue's widest pedestrian, r = 0.35 m): its point is the whole arc's
+  // middle. The boxes' long sides are 1.8 m (a cyclist) and more.
+  double min_box_side_m = 0.7;
   // Report only the dynamic objects (the paper's list, IV.D); false keeps static ones too.
   bool dynamic_only = true;
   // The longest side an object is taken to have (a car's length): a side hidden in part by

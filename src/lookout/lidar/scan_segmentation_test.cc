@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lookout/core/input_error.h"
+#include "lookout/core/planar_geometry.h"
 #include "lookout/lidar/cast_scan_for_tests.h"
 #include "lookout/sim/raycast.h"
 #include "lookout/sim/shapes.h"
@@ -23,10 +24,10 @@ using testing::CastScan;
 std::vector<sim::Shape> SegmentationScene() {
   const int s = sim::kStaticOwner;
   return {
-      sim::Shape::Box(Pose2(10.0, 3.0, 0.0), 4.5, 1.8, s),      // car: rear faces the lidar
-      sim::Shape::Box(Pose2(15.0, -4.0, 0.5), 4.0, 2.0, s),     // van, turned
-      sim::Shape::Box(Pose2(30.0, -25.0, 0.0), 0.3, 20.0, s),   // wall, x = 29.85 facing us
-      sim::Shape::Circle({5.0, -8.0}, 0.15, s),                 // pole
+      sim::Shape::Box(Pose2(10.0, 3.0, 0.0), 4.5, 1.8, s),     // car: rear faces the lidar
+      sim::Shape::Box(Pose2(15.0, -4.0, 0.5), 4.0, 2.0, s),    // van, turned
+      sim::Shape::Box(Pose2(30.0, -25.0, 0.0), 0.3, 20.0, s),  // wall, x = 29.85 facing us
+      sim::Shape::Circle({5.0, -8.0}, 0.15, s),                // pole
   };
 }
 
@@ -136,6 +137,58 @@ TEST(ScanSegmentation, AHiddenEndWidensThePointAlongTheSide) {
   EXPECT_LT(std::sqrt(along(*post)), 0.05);
 }
 
+// The front of an L is the side the ray from the box's centre to the lidar leaves through, as
+// the truth and the camera take it (stereo::FrontSegmentFacing), not the side with more
+// returns. A cyclist (1.8 x 0.6 m) 3 m ahead and 1.2 m right: its end spans 12.3 degrees, its
+// side 10.2, but |c_y| / 0.3 > |c_x| / 0.9, so the ray from its centre leaves through the side,
+// y = -0.9, whose middle is (3.0, -0.9).
+TEST(ScanSegmentation, TheFrontIsTheSideTheRayFromTheCentreLeavesThrough) {
+  const sim::Shape cyclist = sim::Shape::Box(Pose2(3.0, -1.2, 0.0), 1.8, 0.6, sim::kStaticOwner);
+  const LidarObjectFrame f = SegmentScan(CastScan({cyclist}), {}, Pose2(), KeepAll(), 0.1);
+  ASSERT_EQ(f.objects.size(), 1u);
+  const LidarObject& o = f.objects[0];
+  EXPECT_LT((o.point_m - Eigen::Vector2d(3.0, -0.9)).norm(), 0.03) << o.point_m.transpose();
+  EXPECT_NEAR((o.front_end_m - o.front_start_m).norm(), 1.8, 0.05);
+  // Further out on the same bearing the end faces the lidar: (3.6, -1.2) for c = (4.5, -1.2).
+  const sim::Shape further = sim::Shape::Box(Pose2(4.5, -1.2, 0.0), 1.8, 0.6, sim::kStaticOwner);
+  const LidarObjectFrame g = SegmentScan(CastScan({further}), {}, Pose2(), KeepAll(), 0.1);
+  ASSERT_EQ(g.objects.size(), 1u);
+  EXPECT_LT((g.objects[0].point_m - Eigen::Vector2d(3.6, -1.2)).norm(), 0.03)
+      << g.objects[0].point_m.transpose();
+}
+
+// A cyclist head-on 20 m ahead: its end and the first returns of its side, which grazes the
+// beams. The small L's corner lies at one end of its returns: a box's end, kept as the front.
+TEST(ScanSegmentation, ABoxEndSeenAlongItsSideStaysTheFront) {
+  const sim::Shape cyclist = sim::Shape::Box(Pose2(20.9, -1.55, 0.0), 1.8, 0.6, sim::kStaticOwner);
+  const LidarObjectFrame f = SegmentScan(CastScan({cyclist}), {}, Pose2(), KeepAll(), 0.1);
+  const LidarObject* o = Nearest(f, {20.0, -1.55});
+  ASSERT_NE(o, nullptr);
+  EXPECT_LT((o->point_m - Eigen::Vector2d(20.0, -1.55)).norm(), 0.03) << o->point_m.transpose();
+}
+
+// A pedestrian (a circle of radius 0.3 m) is an arc that bends by its radius: not two sides of
+// a box. Split at its nearest return, either half's middle would lie a tenth of a metre to the
+// side of the ray through its centre (r / 2 for a quarter arc); whole, its point lies on that
+// ray, up to the beams' discreteness (4.4 cm apart at 10 m), at its nearest point, r in front
+// of the centre: the returns' line lies (pi / 4) r in front, moved by (1 - pi / 4) r towards
+// the lidar, r half the chord. The arc's grazing ends break off (Borges-Aldon), so the chord
+// is a little under the diameter.
+TEST(ScanSegmentation, ARoundBodyIsOneArc) {
+  const Eigen::Vector2d centre(10.0, 2.0);
+  const LidarObjectFrame f = SegmentScan(
+      CastScan({sim::Shape::Circle(centre, 0.3, sim::kStaticOwner)}), {}, Pose2(), KeepAll(), 0.1);
+  ASSERT_EQ(f.objects.size(), 1u);
+  const LidarObject& o = f.objects[0];
+  const Eigen::Vector2d ray = centre.normalized();
+  const Eigen::Vector2d offset = o.point_m - centre;
+  EXPECT_LT(std::abs(Cross(ray, offset)), 0.03) << o.point_m.transpose();
+  EXPECT_NEAR(-ray.dot(offset), 0.3, 0.02);
+  const double chord = (o.front_end_m - o.front_start_m).norm();
+  EXPECT_GT(chord, 0.45);
+  EXPECT_LT(chord, 0.61);
+}
+
 TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
   const LidarScan scan = CastScan(SegmentationScene());
   std::vector<HitClass> classes(scan.ranges_m.size(), HitClass::kNoReturn);
@@ -231,6 +284,9 @@ TEST(ScanSegmentation, OptionsNameTheBadField) {
   EXPECT_THROW(o.Validate(), InputError);
   o = {};
   o.max_side_length_m = 0.0;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.min_box_side_m = -0.1;
   EXPECT_THROW(o.Validate(), InputError);
 }
 
