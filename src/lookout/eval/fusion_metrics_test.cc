@@ -74,8 +74,8 @@ TEST(FusionMetricsTest, NothingMatchedHasNoValues) {
 // bearing sigma 0.01 rad from the lidar origin (a segment's middle from a few dozen returns),
 // drawn exactly from the Cartesian covariance that the Jacobian gives.
 LidarObjectFrame LidarObjectsFromTruth(const sim::TruthFrame& truth,
-                                       const sim::LidarOptions& lidar_options,
-                                       std::uint64_t seed, int frame_index) {
+                                       const sim::LidarOptions& lidar_options, std::uint64_t seed,
+                                       int frame_index) {
   LidarObjectFrame frame;
   frame.stamp = truth.stamp;
   frame.mount = Pose2(lidar_options.x_m, lidar_options.y_m, lidar_options.yaw_rad);
@@ -122,7 +122,7 @@ EndToEnd RunScenario(const std::string& name) {
   // The lidar objects here are the true front points with noise of known covariance: they
   // carry none of the definition errors the lidar point model adds (lidar_point_model.h).
   fusion::FusionOptions options;
-  options.lidar_point.enabled = false;
+  options.lidar_point.round_body = false;
   fusion::FusionEngine engine(options);
   EndToEnd result;
   std::size_t next_stereo = 0;
@@ -133,8 +133,8 @@ EndToEnd RunScenario(const std::string& name) {
       ++next_stereo;
     }
     const StereoFrame latest = next_stereo > 0 ? log.stereo[next_stereo - 1] : StereoFrame{};
-    const LidarObjectFrame lidar = LidarObjectsFromTruth(truth, scenario.sensors.lidar,
-                                                         scenario.seed, static_cast<int>(k));
+    const LidarObjectFrame lidar =
+        LidarObjectsFromTruth(truth, scenario.sensors.lidar, scenario.seed, static_cast<int>(k));
     const fusion::FusedObjectFrame fused = engine.Fuse(lidar, latest);
     const std::vector<TrueObject> objects = TrueObjectsInVehicleFrame(truth);
     result.metrics.AddFrame(fused, lidar, engine.stereo_at_lidar_time(), objects);
@@ -147,8 +147,8 @@ EndToEnd RunScenario(const std::string& name) {
 // objects of known noise. Fusion must beat both sensors alone, and its covariance must be
 // consistent with its errors (mean NEES inside its 95 % band).
 TEST(FusionMetricsTest, EndToEndOnCatalogueScenarios) {
-  for (const std::string name : {"intersafe-fig8", "occluded-pedestrian", "pushchair-group",
-                                 "right-turn-cyclist"}) {
+  for (const std::string name :
+       {"intersafe-fig8", "occluded-pedestrian", "pushchair-group", "right-turn-cyclist"}) {
     const EndToEnd run = RunScenario(name);
     const FusionMetricsAccumulator& m = run.metrics;
     ASSERT_GE(m.matched(), 50) << name;
@@ -157,10 +157,9 @@ TEST(FusionMetricsTest, EndToEndOnCatalogueScenarios) {
                          std::to_string(*m.PositionRmse()) + " m, lidar " +
                          std::to_string(*m.LidarOnlyRmse()) + " m, stereo " +
                          std::to_string(*m.StereoOnlyRmse()) + " m, NEES " +
-                         std::to_string(*m.MeanNees()) + " in [" + std::to_string(band.low) +
-                         ", " + std::to_string(band.high) + "], pairs " +
-                         std::to_string(run.stats.pairs) + ", stereo frames used " +
-                         std::to_string(run.stats.stereo_frames_used);
+                         std::to_string(*m.MeanNees()) + " in [" + std::to_string(band.low) + ", " +
+                         std::to_string(band.high) + "], pairs " + std::to_string(run.stats.pairs) +
+                         ", stereo frames used " + std::to_string(run.stats.stereo_frames_used);
     std::cout << report << "\n";
     EXPECT_LT(*m.PositionRmse(), *m.LidarOnlyRmse()) << report;
     EXPECT_LT(*m.PositionRmse(), *m.StereoOnlyRmse()) << report;

@@ -65,7 +65,7 @@ TEST(FuseObjectsTest, PairIsFusedByCovariances) {
   // The covariances as given: the lidar point model (which would add a pedestrian's round
   // body to the lidar's, TheLidarPointTakesTheCamerasClass) is off here.
   FusionOptions options;
-  options.lidar_point.enabled = false;
+  options.lidar_point.round_body = false;
   const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
   ASSERT_EQ(result.frame.objects.size(), 1u);
   EXPECT_EQ(result.pairs, 1u);
@@ -73,9 +73,9 @@ TEST(FuseObjectsTest, PairIsFusedByCovariances) {
   EXPECT_EQ(f.sensor_count, 2);
   EXPECT_EQ(f.lidar_id, 7u);
   EXPECT_EQ(f.stereo_id, 3u);
-  const Gaussian2 expected = FuseGaussians(
-      {lidar.objects[0].point_m, lidar.objects[0].point_covariance},
-      {stereo[0].point.point_m, stereo[0].point.covariance});
+  const Gaussian2 expected =
+      FuseGaussians({lidar.objects[0].point_m, lidar.objects[0].point_covariance},
+                    {stereo[0].point.point_m, stereo[0].point.covariance});
   EXPECT_LT((f.point_m - expected.mean).norm(), 1e-9);
   EXPECT_LT((f.point_covariance - expected.covariance).norm(), 1e-9);
   // x: lidar 0.01 against stereo 0.09 -> 0.9 of the way to the lidar's 15.2.
@@ -103,7 +103,7 @@ TEST(FuseObjectsTest, TheLidarPointTakesTheCamerasClass) {
   const LidarObjectFrame lidar = Frame({paired, alone});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
   FusionOptions options;
-  options.lidar_point.enabled = true;
+  options.lidar_point.round_body = true;
   const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
   ASSERT_EQ(result.pairs, 1u);
   ASSERT_EQ(result.lidar.objects.size(), 2u);
@@ -112,9 +112,8 @@ TEST(FuseObjectsTest, TheLidarPointTakesTheCamerasClass) {
   EXPECT_GT((modelled - paired.point_covariance).norm(), 1e-3);
   EXPECT_EQ(result.lidar.objects[0].point_covariance, modelled);
   EXPECT_EQ(result.lidar.objects[1].point_covariance, alone.point_covariance);
-  const Gaussian2 expected =
-      FuseGaussians({paired.point_m, modelled}, {stereo[0].point.point_m,
-                                                 stereo[0].point.covariance});
+  const Gaussian2 expected = FuseGaussians({paired.point_m, modelled},
+                                           {stereo[0].point.point_m, stereo[0].point.covariance});
   const FusedObject& f = result.frame.objects[0];
   EXPECT_LT((f.point_m - expected.mean).norm(), 1e-12);
   EXPECT_LT((f.point_covariance - expected.covariance).norm(), 1e-12);
@@ -150,11 +149,9 @@ TEST(FuseObjectsTest, VelocitySourceOption) {
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
   FusionOptions options;
   options.velocity_source = VelocitySource::kLidar;
-  EXPECT_EQ(FuseObjects(lidar, stereo, options).frame.objects[0].velocity_mps,
-            Vector2d(4.0, 0.0));
+  EXPECT_EQ(FuseObjects(lidar, stereo, options).frame.objects[0].velocity_mps, Vector2d(4.0, 0.0));
   options.velocity_source = VelocitySource::kStereo;
-  EXPECT_LT((FuseObjects(lidar, stereo, options).frame.objects[0].velocity_mps -
-             Vector2d(0.0, 1.5))
+  EXPECT_LT((FuseObjects(lidar, stereo, options).frame.objects[0].velocity_mps - Vector2d(0.0, 1.5))
                 .norm(),
             1e-12);
 }
@@ -180,7 +177,7 @@ TEST(FuseObjectsTest, StereoClassPmfSumsToOne) {
 }
 
 TEST(FuseObjectsTest, MovingNeedsSpeedAndSignificance) {
-  const Matrix2d c = 0.09 * Matrix2d::Identity();  // sigma 0.3 m/s
+  const Matrix2d c = 0.09 * Matrix2d::Identity();                         // sigma 0.3 m/s
   EXPECT_FALSE(IsSignificantlyMoving(Vector2d(0.4, 0.0), c, 0.5, 0.99));  // too slow
   EXPECT_FALSE(IsSignificantlyMoving(Vector2d(0.8, 0.0), c, 0.5, 0.99));  // d2 7.1 < 9.21
   EXPECT_TRUE(IsSignificantlyMoving(Vector2d(1.0, 0.0), c, 0.5, 0.99));   // d2 11.1

@@ -29,10 +29,9 @@ void RequirePointModel(bool ok, const char* field, const char* what) {
 void LidarPointModelOptions::Validate() const {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   RequirePointModel(positive(beam_spacing_rad), "beam_spacing_rad", "must be finite and > 0");
-  RequirePointModel(std::isfinite(grid_cell_size_m) && grid_cell_size_m >= 0.0,
-                    "grid_cell_size_m", "must be finite and >= 0");
-  RequirePointModel(positive(pedestrian_radius_m), "pedestrian_radius_m",
-                    "must be finite and > 0");
+  RequirePointModel(std::isfinite(grid_cell_size_m) && grid_cell_size_m >= 0.0, "grid_cell_size_m",
+                    "must be finite and >= 0");
+  RequirePointModel(positive(pedestrian_radius_m), "pedestrian_radius_m", "must be finite and > 0");
   RequirePointModel(positive(cyclist_length_m) && positive(cyclist_width_m), "cyclist_*_m",
                     "must be finite and > 0");
   RequirePointModel(positive(car_length_m) && positive(car_width_m), "car_*_m",
@@ -60,11 +59,14 @@ double BoxHiddenExtentVariance(double visible_m, double length_m, double width_m
          (1.0 - p_length) * HiddenExtentVariance(visible_m, shorter);
 }
 
-Matrix2d RoundBodyCovariance(double radius_m, const Vector2d& ray) {
+Matrix2d RoundBodyCovariance(double radius_m, const Vector2d& ray, double depth_r) {
   const Vector2d along = ray.normalized();
   const Vector2d across(-along.y(), along.x());
   const double r2 = radius_m * radius_m;
-  const double var_along = r2 * (kPi * kPi / 16.0 - std::sqrt(2.0) + 0.5 + 1.0 / kPi);
+  // E[(k - cos t)^2] = k^2 - 2 k E[cos t] + E[cos^2 t], E[cos t] = 2 sqrt 2 / pi,
+  // E[cos^2 t] = 1/2 + 1/pi, t uniform on [-pi/4, pi/4].
+  const double var_along =
+      r2 * (depth_r * depth_r - 4.0 * std::sqrt(2.0) / kPi * depth_r + 0.5 + 1.0 / kPi);
   const double var_across = r2 * (0.5 - 1.0 / kPi);
   return var_along * along * along.transpose() + var_across * across * across.transpose();
 }
@@ -81,17 +83,18 @@ Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_clas
                               const Vector2d& lidar_origin_m,
                               const LidarPointModelOptions& options) {
   Matrix2d covariance = object.point_covariance;
-  if (!options.enabled) return covariance;
   const Vector2d ray = object.point_m - lidar_origin_m;
   const double range = ray.norm();
   if (!(range > 0.0) || !std::isfinite(range)) return covariance;
-  if (object_class == ObjectClass::kPedestrian) {
-    covariance += RoundBodyCovariance(options.pedestrian_radius_m, ray);
+  if (options.round_body && object_class == ObjectClass::kPedestrian) {
+    covariance += RoundBodyCovariance(
+        options.pedestrian_radius_m, ray,
+        object.cell_count == 0 ? kSegmentationRoundBodyDepth : kGridRoundBodyDepth);
   }
   // The segmentation bounds each end of its segment from the scan itself (the next beam past
   // it, or the shadow hiding it); the grid's ends are cells at its extreme bearings, bounded
   // by nothing the grid reports.
-  if (object.cell_count == 0) return covariance;
+  if (!options.grid_extent || object.cell_count == 0) return covariance;
   const Vector2d segment = object.front_end_m - object.front_start_m;
   const double visible = segment.norm();
   const Vector2d beam = ray / range;
@@ -113,8 +116,7 @@ Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_clas
       var_along += BoxHiddenExtentVariance(visible, options.car_length_m, options.car_width_m);
       break;
     case ObjectClass::kTruck:
-      var_along +=
-          BoxHiddenExtentVariance(visible, options.truck_length_m, options.truck_width_m);
+      var_along += BoxHiddenExtentVariance(visible, options.truck_length_m, options.truck_width_m);
       break;
     case ObjectClass::kUnknown:
     case ObjectClass::kPole:

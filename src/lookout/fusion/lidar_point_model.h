@@ -24,11 +24,15 @@
 namespace lookout::fusion {
 
 struct LidarPointModelOptions {
-  // Off: the lidar object's covariance as its source reports it. Off by default for now: on,
-  // it brought the fused NEES 3-12 times nearer its band and the fused RMSE down by up to 43 %,
-  // but no scenario more into its band, and right-turn-cyclist's tracking IDF1 (grid objects)
-  // from 0.913 to 0.623 (docs/fusion.md, "The lidar point's covariance", 2026-12-02).
-  bool enabled = false;
+  // The round body, for the pedestrians of either source. On since 2026-12-03, when the
+  // segmentation's point for an arc became its nearest point: the pedestrians' fused NEES
+  // 6-14 times nearer its band, their fused RMSE 18-29 % lower, and the crowd's tracking
+  // better (docs/fusion.md, "The round body on by default").
+  bool round_body = true;
+  // The ends' resolution and the hidden extent, for the grid's objects. Off: on, right-turn-
+  // cyclist's tracking IDF1 (grid objects) falls from 0.95 to 0.64 (docs/fusion.md, "The lidar
+  // point's covariance").
+  bool grid_extent = false;
   // The scanner's angle between neighbouring beams (the simulator's 0.25 deg) and the grid's
   // cell size (GridOptions::cell_size_m): a LidarObject carries neither.
   double beam_spacing_rad = 0.25 * 3.14159265358979323846 / 180.0;
@@ -62,22 +66,26 @@ double HiddenExtentVariance(double visible_m, double side_m);
 // extent is the front: L |sin| > W |cos|).
 double BoxHiddenExtentVariance(double visible_m, double length_m, double width_m);
 
-// The second moments of the middle of a circle's visible arc (radius `radius_m`) about the
-// middle of the side facing the lidar of the 2r square along the body's heading, unknown and
-// uniform. Seen from afar the beams sample the arc evenly across the ray, so the segment's
-// middle lies (pi / 4) r in front of the centre on the ray; the square's facing side has its
+// The second moments of the lidar's point for a circle (radius `radius_m`) about the middle
+// of the side facing the lidar of the 2r square along the body's heading, unknown and uniform.
+// The lidar's point lies `depth_r` radii in front of the centre on the ray: the segmentation's
+// is the arc's nearest point (1: scan_segmentation.h moves the returns' line there); the
+// grid's the middle of its cells at their mean depth, which seen from afar, the beams sampling
+// the arc evenly across the ray, is (pi / 4) r in front. The square's facing side has its
 // normal within 45 deg of the ray, at an angle t uniform on [-pi/4, pi/4], its middle at
-// r (cos t, sin t) in (along, across) ray axes. Along: r^2 E[(pi/4 - cos t)^2]
-// = r^2 (pi^2/16 - sqrt 2 + 1/2 + 1/pi), 2 % of r^2; across: r^2 E[sin^2 t] = r^2 (1/2 - 1/pi),
-// 18 % of r^2 (0.13 m for r = 0.3 m). `ray` points from the lidar to the object (any length
-// but zero); the covariance is in the same axes as `ray`.
-Eigen::Matrix2d RoundBodyCovariance(double radius_m, const Eigen::Vector2d& ray);
+// r (cos t, sin t) in (along, across) ray axes. Along: r^2 E[(k - cos t)^2]
+// = r^2 (k^2 - 4 sqrt 2 k / pi + 1/2 + 1/pi): 1.8 % of r^2 for k = 1, 2.1 % for pi / 4;
+// across: r^2 E[sin^2 t] = r^2 (1/2 - 1/pi), 18 % of r^2 (0.13 m for r = 0.3 m). `ray` points
+// from the lidar to the object (any length but zero); the covariance is in the same axes.
+inline constexpr double kSegmentationRoundBodyDepth = 1.0;
+inline constexpr double kGridRoundBodyDepth = 0.25 * 3.14159265358979323846;
+Eigen::Matrix2d RoundBodyCovariance(double radius_m, const Eigen::Vector2d& ray, double depth_r);
 
 // The lidar object's point covariance with the terms above added for an object of class
 // `object_class` seen from `lidar_origin_m` (vehicle frame, as the object): the round body for
 // pedestrians, from either source; the ends' resolution and the hidden extent for the grid's
-// objects (cell_count > 0), whose ends the scan does not bound. `options.enabled` false, or an
-// object the terms do not apply to: its own covariance.
+// objects (cell_count > 0), whose ends the scan does not bound; each as `options` switches it.
+// An object the terms do not apply to: its own covariance.
 Eigen::Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_class,
                                      const Eigen::Vector2d& lidar_origin_m,
                                      const LidarPointModelOptions& options);

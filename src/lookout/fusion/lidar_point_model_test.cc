@@ -81,15 +81,16 @@ TEST(LidarPointModelTest, BoxHiddenExtentFollowsTheFacingSideRule) {
   const double expected = BoxHiddenExtentVariance(visible, length, width);
   EXPECT_NEAR(sum2 / n, expected, 0.02 * expected) << "seed " << kSeed;
   // Seen over more than its width, it can only be the length side.
-  EXPECT_DOUBLE_EQ(BoxHiddenExtentVariance(2.5, length, width),
-                   HiddenExtentVariance(2.5, length));
+  EXPECT_DOUBLE_EQ(BoxHiddenExtentVariance(2.5, length, width), HiddenExtentVariance(2.5, length));
 }
 
 // A pedestrian, a circle of radius r, 12 m from the lidar, seen by beams 0.05 deg apart (far
-// enough and fine enough for the model's "seen from afar"): the lidar's point is the middle of
-// its returns across the ray at their mean depth (what a straight-line fit of the arc gives);
-// the true point is the middle of the facing side of the 2r square along a uniformly random
-// heading (eval::TrueFrontPoints). Their second moments in ray axes against the model's.
+// enough and fine enough for the model's "seen from afar"): the grid's point is the middle of
+// its returns across the ray at their mean depth (what a straight-line fit of the arc gives),
+// the segmentation's that moved (1 - pi/4) r towards the lidar (half the returns' extent
+// across the ray for r); the true point is the middle of the facing side of the 2r square
+// along a uniformly random heading (eval::TrueFrontPoints). Their second moments in ray axes
+// against the model's, for each depth.
 TEST(LidarPointModelTest, RoundBodyMatchesBeamsOnACircle) {
   const double r = 0.3;
   const Vector2d lidar(2.2, 0.0);
@@ -117,29 +118,37 @@ TEST(LidarPointModelTest, RoundBodyMatchesBeamsOnACircle) {
   }
   ASSERT_GT(hits, 50);  // 57 beams over the 0.6 m body
   const Vector2d mean = sum / hits;
-  const Vector2d lidar_point =
+  const Vector2d grid_point =
       centre + (mean - centre).dot(along) * along + 0.5 * (first_across + last_across) * across;
+  const double seen_radius = 0.5 * std::abs(last_across - first_across);
+  const Vector2d segmentation_point = grid_point - (1.0 - kPi / 4.0) * seen_radius * along;
 
-  std::mt19937_64 rng(kSeed);
-  std::uniform_real_distribution<double> heading(-kPi, kPi);
-  const int n = 200'000;
-  double s_along = 0.0, s_across = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const stereo::OrientedBox square{centre, heading(rng), 2.0 * r, 2.0 * r};
-    const auto front = stereo::FrontSegmentFacing(square, lidar);
-    ASSERT_TRUE(front.has_value());
-    const Vector2d e = lidar_point - front->midpoint_m;
-    s_along += e.dot(along) * e.dot(along);
-    s_across += e.dot(across) * e.dot(across);
+  for (const auto& [lidar_point, depth] :
+       {std::pair{grid_point, kGridRoundBodyDepth},
+        std::pair{segmentation_point, kSegmentationRoundBodyDepth}}) {
+    std::mt19937_64 rng(kSeed);
+    std::uniform_real_distribution<double> heading(-kPi, kPi);
+    const int n = 200'000;
+    double s_along = 0.0, s_across = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const stereo::OrientedBox square{centre, heading(rng), 2.0 * r, 2.0 * r};
+      const auto front = stereo::FrontSegmentFacing(square, lidar);
+      ASSERT_TRUE(front.has_value());
+      const Vector2d e = lidar_point - front->midpoint_m;
+      s_along += e.dot(along) * e.dot(along);
+      s_across += e.dot(across) * e.dot(across);
+    }
+    const Matrix2d model = RoundBodyCovariance(r, to_centre, depth);
+    const double model_along = along.dot(model * along);
+    const double model_across = across.dot(model * across);
+    EXPECT_NEAR(s_along / n, model_along, 0.05 * model_along)
+        << "depth " << depth << ", seed " << kSeed;
+    EXPECT_NEAR(s_across / n, model_across, 0.02 * model_across)
+        << "depth " << depth << ", seed " << kSeed;
+    EXPECT_NEAR(along.dot(model * across), 0.0, 1e-12);
+    // The figures the docs give: across, 0.13 m for r = 0.3 m.
+    EXPECT_NEAR(std::sqrt(model_across), 0.128, 0.001);
   }
-  const Matrix2d model = RoundBodyCovariance(r, to_centre);
-  const double model_along = along.dot(model * along);
-  const double model_across = across.dot(model * across);
-  EXPECT_NEAR(s_along / n, model_along, 0.05 * model_along) << "seed " << kSeed;
-  EXPECT_NEAR(s_across / n, model_across, 0.02 * model_across) << "seed " << kSeed;
-  EXPECT_NEAR(along.dot(model * across), 0.0, 1e-12);
-  // The figures the docs give: across, 0.13 m for r = 0.3 m.
-  EXPECT_NEAR(std::sqrt(model_across), 0.128, 0.001);
 }
 
 LidarObject SegmentObject(const Vector2d& point, const Vector2d& half_side) {
@@ -153,10 +162,10 @@ LidarObject SegmentObject(const Vector2d& point, const Vector2d& half_side) {
 
 // Which terms reach which object: the round body any pedestrian's, the ends and the hidden
 // extent a grid object's only (the segmentation bounds its ends from the scan), nothing an
-// unknown segmentation object's or any object's with the model off.
+// unknown segmentation object's, and no term that is switched off.
 TEST(LidarPointModelTest, TermsByClassAndSource) {
   LidarPointModelOptions options;
-  options.enabled = true;
+  options.grid_extent = true;
   const Vector2d lidar(2.2, 0.0);
   const Vector2d point(22.2, 0.0);  // 20 m straight ahead: along the ray is x
   const LidarObject segment = SegmentObject(point, Vector2d(0.0, 0.25));
@@ -166,12 +175,13 @@ TEST(LidarPointModelTest, TermsByClassAndSource) {
             segment.point_covariance);
   const Matrix2d pedestrian =
       LidarPointCovariance(segment, ObjectClass::kPedestrian, lidar, options);
-  EXPECT_LT((pedestrian - segment.point_covariance -
-             RoundBodyCovariance(options.pedestrian_radius_m, point - lidar))
-                .norm(),
-            1e-15);
-  const LidarPointModelOptions off;  // the default
-  ASSERT_FALSE(off.enabled);
+  EXPECT_LT(
+      (pedestrian - segment.point_covariance -
+       RoundBodyCovariance(options.pedestrian_radius_m, point - lidar, kSegmentationRoundBodyDepth))
+          .norm(),
+      1e-15);
+  LidarPointModelOptions off;
+  off.round_body = false;
   EXPECT_EQ(LidarPointCovariance(segment, ObjectClass::kPedestrian, lidar, off),
             segment.point_covariance);
 
@@ -190,6 +200,14 @@ TEST(LidarPointModelTest, TermsByClassAndSource) {
   const Matrix2d unknown = LidarPointCovariance(grid, ObjectClass::kUnknown, lidar, options);
   EXPECT_NEAR(unknown(1, 1) - grid.point_covariance(1, 1),
               EndResolutionVariance(spacing, options.grid_cell_size_m), 1e-12);
+  // The defaults: the round body on, the grid's extent off.
+  const LidarPointModelOptions defaults;
+  EXPECT_EQ(LidarPointCovariance(grid, ObjectClass::kCar, lidar, defaults), grid.point_covariance);
+  EXPECT_LT((LidarPointCovariance(grid, ObjectClass::kPedestrian, lidar, defaults) -
+             grid.point_covariance -
+             RoundBodyCovariance(defaults.pedestrian_radius_m, point - lidar, kGridRoundBodyDepth))
+                .norm(),
+            1e-15);
 }
 
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
