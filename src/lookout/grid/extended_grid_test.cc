@@ -88,7 +88,9 @@ ExtendedGrid TrackBox(int width, int height, Eigen::Vector2d start_m, Eigen::Vec
   ExtendedGrid grid(Geometry(width, height), options);
   for (int k = 0; k < cycles; ++k) {
     const Eigen::Vector2d p = start_m + velocity_mps * (k * kDtS);
-    grid.Update(Measure(grid.geometry(), {BoxM{p.x(), p.y(), size_m.x(), size_m.y()}}), kDtS);
+    MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), size_m.x(), size_m.y()}});
+    z.stamp = (k + 1) * 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+    grid.Update(z, kDtS);
   }
   return grid;
 }
@@ -327,10 +329,10 @@ TEST(ExtendedGridReferenceTest, FactorisedRigidityStaysCloseToLiteral) {
       EXPECT_LT(d.occupied_velocity_mps,
                 tracked ? kTrackedVelocityBoundMps : kMixedVelocityBoundMps);
     }
-    std::printf("factorised vs literal (%s windows), worst over seeds 1-8: occupancy %.3f, "
-                "velocity in occupied cells %.3f m/s, rigidity links %.3f\n",
-                tracked ? "fine" : "mixed", worst.occupancy, worst.occupied_velocity_mps,
-                worst.rigidity);
+    std::printf(
+        "factorised vs literal (%s windows), worst over seeds 1-8: occupancy %.3f, "
+        "velocity in occupied cells %.3f m/s, rigidity links %.3f\n",
+        tracked ? "fine" : "mixed", worst.occupancy, worst.occupied_velocity_mps, worst.rigidity);
   }
 }
 
@@ -390,8 +392,8 @@ TEST(ExtendedGridTest, StaticWorldConverges) {
   for (std::size_t i = 0; i < o.size(); ++i) {
     if (truth.p_occupied[i] == kHit) {
       worst_occupied = std::min(worst_occupied, static_cast<double>(o[i]));
-      worst_speed = std::max(worst_speed, std::hypot(static_cast<double>(vx[i]),
-                                                     static_cast<double>(vy[i])));
+      worst_speed =
+          std::max(worst_speed, std::hypot(static_cast<double>(vx[i]), static_cast<double>(vy[i])));
     } else {
       worst_free = std::max(worst_free, static_cast<double>(o[i]));
     }
@@ -445,8 +447,8 @@ TEST(ExtendedGridTest, DISABLED_TwentyMetresPerSecondBoxIsTracked) {
     if (k < kCycles - kAveraged) continue;
     int count = 0;
     const Eigen::Vector2d mean = MeanVelocityIn(grid, box, 0.6, &count);
-    std::printf("20 m/s box, cycle %d: mean velocity (%.2f, %.2f) m/s over %d cells\n", k,
-                mean.x(), mean.y(), count);
+    std::printf("20 m/s box, cycle %d: mean velocity (%.2f, %.2f) m/s over %d cells\n", k, mean.x(),
+                mean.y(), count);
     sum += mean;
     min_count = std::min(min_count, count);
   }
@@ -509,9 +511,10 @@ TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
   const double near = MassNear(grid, truth, 1.0);
   const double total = MassNear(grid, truth, 100.0);  // reported only (see the report)
   const double spread_after = MassSpreadM(grid);
-  std::printf("occluded: mass before %.2f, after %.2f of which %.2f within 1 m of the truth; "
-              "spread %.3f -> %.3f m\n",
-              mass_before, total, near, spread_before, spread_after);
+  std::printf(
+      "occluded: mass before %.2f, after %.2f of which %.2f within 1 m of the truth; "
+      "spread %.3f -> %.3f m\n",
+      mass_before, total, near, spread_before, spread_after);
   EXPECT_GT(near, 0.5 * mass_before) << "the occluded object's mass was lost or left behind";
   EXPECT_GT(spread_after, spread_before + 0.02) << "occluded occupancy should spread";
 }

@@ -296,6 +296,22 @@ FlowMeasurement ScanFlow::Measure(const CellIndex& cell) const {
   lag.lag_scans = options_.long_lag_scans;
   lag.mean_x_cells = lag.displacement.ix * long_lag_scale_;
   lag.mean_y_cells = lag.displacement.iy * long_lag_scale_;
+  // The long pair's move, over one cycle, must come from a previous hit: the last scan saw
+  // something within a cell of where this cell's content was then. A body faster than the long
+  // pair's reach (long_lag_below_cells a cycle) that the one cycle could not measure (a filled
+  // or long body sliding along itself) is otherwise aliased to the edge of that reach (a 12 m/s
+  // box measured at 2 cells a cycle, its cells left with the wrong velocity).
+  if (lag.kind == FlowKind::kMoves) {
+    const int from_x = cell.ix - static_cast<int>(std::lround(lag.mean_x_cells));
+    const int from_y = cell.iy - static_cast<int>(std::lround(lag.mean_y_cells));
+    bool from_hit = false;
+    for (int y = from_y - 1; y <= from_y + 1; ++y) {
+      for (int x = from_x - 1; x <= from_x + 1; ++x) {
+        from_hit = from_hit || (Inside(maps_, x, y) && maps_.before[At(maps_, x, y)] != 0);
+      }
+    }
+    if (!from_hit) return one;
+  }
   return lag;
 }
 
