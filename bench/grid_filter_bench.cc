@@ -207,17 +207,18 @@ BENCHMARK(BM_ExtendedGridUpdateSimJunction)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// The same cycle with the scan pair's windows on (grid/scan_flow.h, --grid-scan-flow on): the
-// measurement of every source that would get the wide window, and their fine windows after.
-void BM_ExtendedGridUpdateSimJunctionScanFlow(benchmark::State& state) {
+// The same cycle without the scan pair's windows (grid/scan_flow.h, on by default;
+// --grid-scan-flow off): what its measurement of every source that would get the wide window,
+// and their fine windows after, cost.
+void BM_ExtendedGridUpdateSimJunctionNoScanFlow(benchmark::State& state) {
   static const app::GridCycleInput input = [] {
     FilterOptions filter;
-    filter.scan_flow.enabled = true;
+    filter.scan_flow.enabled = false;
     return app::PrepareGridCycle(io::LoadDefaultScenario(), 4.0, filter);
   }();
   TimeJunctionUpdates(state, input);
 }
-BENCHMARK(BM_ExtendedGridUpdateSimJunctionScanFlow)
+BENCHMARK(BM_ExtendedGridUpdateSimJunctionNoScanFlow)
     ->Arg(1)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)

@@ -102,7 +102,7 @@ struct PipelineChoices {
   std::string ego_pose = "odometry";
   std::string lidar_objects = "segmentation";
   std::string stereo_class = "on";
-  std::string grid_scan_flow = "off";
+  std::string grid_scan_flow = "on";
   std::string tracker = "mht";
   std::string risk_shape = "boxes";
   std::string pedestrian_model = "constant-velocity";
@@ -143,7 +143,7 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
   command
       ->add_option("--grid-scan-flow", choices.grid_scan_flow,
                    "The grid's search for newly seen occupancy guided by the scan pair's "
-                   "displacement (grid/scan_flow.h): on or off")
+                   "displacement (grid/scan_flow.h): on (the default) or off")
       ->check(CLI::IsMember({"on", "off"}));
   command
       ->add_option("--tracker", choices.tracker,

@@ -431,8 +431,9 @@ TEST(ExtendedGridTest, MovingBoxVelocityConvergesFromRest) {
 // the mean over the last 8 cycles (0.64 s).
 // DISABLED, known limit (docs/grid.md, known faults): with the paper's velocity form the box was
 // tracked to 0.68 m/s; with the per-source velocity it is lost after its first cycle, whose
-// coarse window dilutes each source's mean with "stays in place". Run with
-// --gtest_also_run_disabled_tests.
+// coarse window dilutes each source's mean with "stays in place". With the scan pair (on by
+// default, 2026-12-03) it is tracked at 18.1-18.3 m/s, but over 4-12 of its 72 cells above 0.6,
+// and none at the last cycle. Run with --gtest_also_run_disabled_tests.
 TEST(ExtendedGridTest, DISABLED_TwentyMetresPerSecondBoxIsTracked) {
   const Eigen::Vector2d v(20.0, 0.0);
   const Eigen::Vector2d start(0.9, 1.2);
@@ -443,7 +444,9 @@ TEST(ExtendedGridTest, DISABLED_TwentyMetresPerSecondBoxIsTracked) {
   for (int k = 0; k < kCycles; ++k) {
     const Eigen::Vector2d p = start + v * (k * kDtS);
     const BoxM box{p.x(), p.y(), 1.8, 0.9};
-    grid.Update(Measure(grid.geometry(), {box}), kDtS);
+    MeasurementGrid z = Measure(grid.geometry(), {box});
+    z.stamp = (k + 1) * 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+    grid.Update(z, kDtS);
     if (k < kCycles - kAveraged) continue;
     int count = 0;
     const Eigen::Vector2d mean = MeanVelocityIn(grid, box, 0.6, &count);
@@ -473,16 +476,19 @@ double MassNear(const ExtendedGrid& grid, const Eigen::Vector2d& centre_m, doubl
   return mass;
 }
 
-// The RMS distance of the occupancy mass (occupancy above the prior, 2 O - 1) from its centroid:
-// how far the grid's belief about an object is spread.
-double MassSpreadM(const ExtendedGrid& grid) {
+// The RMS distance of the occupancy mass from its centroid, a cell's mass being its occupancy
+// above `floor`: how far the grid's belief about an object is spread. With the free floor
+// (FilterOptions::occupancy_clamp, where space seen free settles) every bit of the object's
+// belief counts; with 0.5 (2 O - 1, the mass above the prior) only its confident core does, and
+// a belief that diffuses lowers its cells' occupancy, so its core shrinks as it spreads.
+double MassSpreadM(const ExtendedGrid& grid, double floor) {
   const auto& g = grid.geometry();
   const auto o = Layer(grid, grid.ids().occupancy);
   double mass = 0.0;
   Eigen::Vector2d first = Eigen::Vector2d::Zero();
   double second = 0.0;
   for (std::size_t i = 0; i < o.size(); ++i) {
-    const double w = std::max(0.0, 2.0 * static_cast<double>(o[i]) - 1.0);
+    const double w = std::max(0.0, static_cast<double>(o[i]) - floor);
     const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromStorage(i));
     mass += w;
     first += w * c;
@@ -492,31 +498,55 @@ double MassSpreadM(const ExtendedGrid& grid) {
   return std::sqrt(std::max(0.0, second / mass - mean.squaredNorm()));
 }
 
+// A 0.45 m box walking at 1.5 m/s, seen for 15 cycles, then hidden (every measurement 0.5) for
+// 12 (~1 s): its mass stays near the truth and its belief spreads. The spread is the whole
+// belief's (MassSpreadM above the free floor), checked also on a pure diffusion (both
+// constraints of step 4 off), which spreads by construction: there the core above 0.5
+// shrinks (0.145 -> 0.032 m with the scan pair, 2026-12-03), so the core cannot be the measure.
+// With the scan pair the box stays tracked and step 4 holds it together: its core shrinks too.
 TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
   const Eigen::Vector2d v(1.5, 0.0);
   const Eigen::Vector2d start(1.5, 2.4);
   const Eigen::Vector2d half_size(0.225, 0.225);
-  ExtendedGrid grid(Geometry(64, 40));
   constexpr int kSeen = 15, kHidden = 12;  // ~1 s hidden
-  for (int k = 0; k < kSeen; ++k) {
-    const Eigen::Vector2d p = start + v * (k * kDtS);
-    grid.Update(Measure(grid.geometry(), {BoxM{p.x(), p.y(), 0.45, 0.45}}), kDtS);
+  FilterOptions diffusion;
+  diffusion.enable_no_convergence_constraint = false;
+  diffusion.enable_rigidity_constraint = false;
+  for (const FilterOptions& options : {FilterOptions{}, diffusion}) {
+    const bool constrained = options.enable_rigidity_constraint;
+    SCOPED_TRACE(constrained ? "defaults" : "both constraints off");
+    ExtendedGrid grid(Geometry(64, 40), options);
+    const double floor = options.occupancy_clamp;
+    TimeNs stamp = 0;
+    for (int k = 0; k < kSeen; ++k) {
+      const Eigen::Vector2d p = start + v * (k * kDtS);
+      MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), 0.45, 0.45}});
+      z.stamp = stamp += 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+      grid.Update(z, kDtS);
+    }
+    const double spread_before = MassSpreadM(grid, floor);
+    const double core_before = MassSpreadM(grid, 0.5);
+    const Eigen::Vector2d seen_at = start + v * ((kSeen - 1) * kDtS) + half_size;
+    const double mass_before = MassNear(grid, seen_at, 1.0);
+    for (int k = 0; k < kHidden; ++k) {
+      MeasurementGrid unknown = Measure(grid.geometry(), {}, /*observed=*/false);
+      unknown.stamp = stamp += 80'000'000;
+      grid.Update(unknown, kDtS);
+    }
+    const Eigen::Vector2d truth = start + v * ((kSeen + kHidden - 1) * kDtS) + half_size;
+    const double near = MassNear(grid, truth, 1.0);
+    const double total = MassNear(grid, truth, 100.0);  // reported only (see the report)
+    const double spread_after = MassSpreadM(grid, floor);
+    std::printf(
+        "occluded, %s: mass before %.2f, after %.2f of which %.2f within 1 m of the truth; "
+        "spread %.3f -> %.3f m (core above 0.5: %.3f -> %.3f m)\n",
+        constrained ? "defaults" : "no constraints", mass_before, total, near, spread_before,
+        spread_after, core_before, MassSpreadM(grid, 0.5));
+    EXPECT_GT(spread_after, spread_before + 0.1) << "occluded occupancy should spread";
+    if (constrained) {
+      EXPECT_GT(near, 0.5 * mass_before) << "the occluded object's mass was lost or left behind";
+    }
   }
-  const double spread_before = MassSpreadM(grid);
-  const Eigen::Vector2d seen_at = start + v * ((kSeen - 1) * kDtS) + half_size;
-  const double mass_before = MassNear(grid, seen_at, 1.0);
-  const MeasurementGrid unknown = Measure(grid.geometry(), {}, /*observed=*/false);
-  for (int k = 0; k < kHidden; ++k) grid.Update(unknown, kDtS);
-  const Eigen::Vector2d truth = start + v * ((kSeen + kHidden - 1) * kDtS) + half_size;
-  const double near = MassNear(grid, truth, 1.0);
-  const double total = MassNear(grid, truth, 100.0);  // reported only (see the report)
-  const double spread_after = MassSpreadM(grid);
-  std::printf(
-      "occluded: mass before %.2f, after %.2f of which %.2f within 1 m of the truth; "
-      "spread %.3f -> %.3f m\n",
-      mass_before, total, near, spread_before, spread_after);
-  EXPECT_GT(near, 0.5 * mass_before) << "the occluded object's mass was lost or left behind";
-  EXPECT_GT(spread_after, spread_before + 0.02) << "occluded occupancy should spread";
 }
 
 // Two tracked cells aimed at the same target with no evidence: they may not pile up.
@@ -623,22 +653,22 @@ std::pair<int, int> ScrollThroughStaticWorld(const FilterOptions& options) {
   return {occupied, dynamic};
 }
 
-// DISABLED, known limit: 272 of 570 occupied static cells in view read faster than 0.5 m/s with
-// confidence >= known_confidence after 15 cycles (the bound is 1 %; 82 of 570 with the
-// paper's velocity form). Solid static boxes revealed by the window's leading edge find the rest
-// of their box on one side only, and inside a solid box nothing corrects the velocity that gives
-// (docs/grid.md, known faults). On the simulator's sparse scans the catalogue's rate is 0.002-0.04.
-// Run with --gtest_also_run_disabled_tests. With the scan pair's windows on, it holds (below).
-TEST(ExtendedGridTest, DISABLED_StaticWorldStaysStaticWhileTheWindowScrolls) {
+// The scan pair (on by default) shows the newly revealed boxes staying (grid/scan_flow.h).
+TEST(ExtendedGridTest, StaticWorldStaysStaticWhileTheWindowScrolls) {
   const auto [occupied, dynamic] = ScrollThroughStaticWorld(FilterOptions{});
   EXPECT_GT(occupied, 50);
   EXPECT_LE(dynamic, occupied / 100);
 }
 
-// The scan pair shows the newly revealed boxes staying (grid/scan_flow.h).
-TEST(ExtendedGridTest, StaticWorldStaysStaticWhileTheWindowScrollsWithScanFlow) {
+// DISABLED, known limit of the grid without the scan pair: 272 of 570 occupied static cells in
+// view read faster than 0.5 m/s with confidence >= known_confidence after 15 cycles (the
+// issue's bound is 1 %; 82 of 570 with the paper's velocity form). Solid static boxes revealed
+// by the window's leading edge find the rest of their box on one side only, and inside a solid
+// box nothing corrects the velocity that gives (docs/grid.md, known faults). Run with
+// --gtest_also_run_disabled_tests.
+TEST(ExtendedGridTest, DISABLED_StaticWorldStaysStaticWhileTheWindowScrollsWithoutScanFlow) {
   FilterOptions options;
-  options.scan_flow.enabled = true;
+  options.scan_flow.enabled = false;
   const auto [occupied, dynamic] = ScrollThroughStaticWorld(options);
   EXPECT_GT(occupied, 50);
   EXPECT_LE(dynamic, occupied / 100);
@@ -672,9 +702,9 @@ TEST(ExtendedGridTest, SlowSmallClusterTendsToPedestrian) {
 TEST(ExtendedGridTest, FastLongClusterTendsToVehicle) {
   const Eigen::Vector2d v(12.0, 0.0);
   constexpr int kCycles = 20;
-  FilterOptions with_flow;
-  with_flow.scan_flow.enabled = true;
-  for (const FilterOptions& options : {FilterOptions{}, with_flow}) {
+  FilterOptions without_flow;
+  without_flow.scan_flow.enabled = false;
+  for (const FilterOptions& options : {FilterOptions{}, without_flow}) {
     SCOPED_TRACE(options.scan_flow.enabled ? "scan flow on" : "scan flow off");
     const ExtendedGrid grid = TrackBox(260, 24, {0.9, 1.2}, {4.5, 1.8}, v, kCycles, options);
     const Eigen::Vector2d p = Eigen::Vector2d(0.9, 1.2) + v * ((kCycles - 1) * kDtS);

@@ -49,10 +49,11 @@
 namespace lookout::grid {
 
 struct ScanFlowOptions {
-  // Off: every cell without a trusted velocity gets the wide window. Off by default: with it on,
-  // a hidden box is tracked, and the filter then holds it together instead of spreading it
-  // (OccludedObjectPersistsAndSpreads fails; docs/grid.md, "The scan pair's displacement").
-  bool enabled = false;
+  // Off: every cell without a trusted velocity gets the wide window (the grid before
+  // 2026-12-03; --grid-scan-flow off). On by default since 2026-12-03: the velocity RMSE better
+  // in every catalogue scenario with movers, the static world read moving 0.007 of the time at
+  // 10 m/s against 0.025 (docs/grid.md, "The scan pair's displacement").
+  bool enabled = true;
   // Displacements searched, cells per cycle: +-12 cells is 22.5 m/s at 0.15 m and 12.5 Hz, the
   // wide window's reach.
   int search_half_cells = 12;
