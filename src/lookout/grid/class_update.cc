@@ -54,12 +54,17 @@ void UpdateClasses(const Associations& a, const TargetIndex& targets,
   const int w = indexer.width();
   const int h = indexer.height();
   // The extent proxy is counted directly in the box of each occupied update cell: a street scene
-  // has a few hundred of them, fewer lookups than a summed-area table of the whole window.
+  // has a few hundred of them, fewer lookups than a summed-area table of the whole window. It
+  // counts the occupied cells this scan hits: the visible surface, for which the cue's sizes
+  // hold. The grid also keeps occupied the cells of a tracked body it no longer sees (a
+  // cyclist's far side, seen as it turned): counted, they made a cyclist a car.
   const auto occupied_in_box = [&](const CellIndex& local, int r) {
     int n = 0;
     for (int y = std::max(0, local.iy - r); y <= std::min(h - 1, local.iy + r); ++y) {
       for (int x = std::max(0, local.ix - r); x <= std::min(w - 1, local.ix + r); ++x) {
-        n += in.occupancy[indexer.Storage(x, y)] >= active ? 1 : 0;
+        const std::size_t s = indexer.Storage(x, y);
+        const bool hit = in.measured.empty() || in.measured[s] > 0.5f;
+        n += in.occupancy[s] >= active && hit ? 1 : 0;
       }
     }
     return n;

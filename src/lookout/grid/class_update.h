@@ -10,8 +10,9 @@
 //        pedestrian rarely exceeds 3 m/s, a cyclist rarely exceeds 10 m/s and is rarely slower
 //        than 2 m/s when it moves, a vehicle is any speed;
 //      - extent: a local proxy for the size of the rigid cluster, the number of occupied cells
-//        in a (2r + 1)^2 box around the cell (r = extent_radius_cells): a pedestrian's or a
-//        cyclist's cluster fills few cells, a vehicle's or a wall's many;
+//        this scan hits in a (2r + 1)^2 box around the cell (r = extent_radius_cells): a
+//        pedestrian's or a cyclist's visible surface fills few cells, a vehicle's or a wall's
+//        many (ClassInputs::measured; all occupied cells when it is empty);
 //      - stereo: class likelihoods of camera objects (polygons in the grid frame), when given;
 //   3. mixed with a uniform floor (class_floor) so that no class is ever ruled out for good.
 // The unknown class has a flat mediocre likelihood under every cue: it wins only without
@@ -45,6 +46,9 @@ struct ClassInputs {
   std::span<const float> velocity_x_mps;
   std::span<const float> velocity_y_mps;
   std::span<const float> confidence;
+  // This scan's P(occupied | z) (MeasurementGrid::p_occupied); empty: every occupied cell is
+  // taken for seen.
+  std::span<const float> measured;
 };
 
 // Updates `class_pmf` (one layer per class) on the update cells. `geometry` locates the stereo

@@ -51,7 +51,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
                 ClassInputs{layers_.Values(ids_.occupancy), layers_.Values(ids_.seen),
                             layers_.Values(ids_.velocity_x_mps),
                             layers_.Values(ids_.velocity_y_mps),
-                            layers_.Values(ids_.velocity_confidence)},
+                            layers_.Values(ids_.velocity_confidence), z.p_occupied},
                 stereo_, classes);                                                         // 8
   stereo_.clear();
   ClearSourceMap(associations, workspace_);

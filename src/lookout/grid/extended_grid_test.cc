@@ -712,6 +712,52 @@ TEST(ExtendedGridTest, FastLongClusterTendsToVehicle) {
   }
 }
 
+// The extent cue reads the scan's hits: a tracked cyclist (1.8 x 0.6 m) whose whole footprint
+// the grid holds occupied, seen on its near side only, fills about one box side of hits (a
+// cyclist's or a walker's), not its footprint's 48 cells (3.7 box sides, a car's). Its speed,
+// 5 m/s, rules out a walker; the cue must not rule out a cyclist.
+TEST(ExtendedGridTest, TheExtentCueCountsTheScansHitsNotTheTrackedFootprint) {
+  ExtendedGrid grid(Geometry(48, 24));
+  GridLayers& l = grid.mutable_layers();
+  const auto& g = grid.geometry();
+  const double vx = 5.0;
+  const BoxM footprint{1.2, 1.5, 1.8, 0.6};
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      const std::size_t i = g.StorageIndexOfLocal({x, y});
+      const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromLocal({x, y}));
+      const bool in = c.x() >= footprint.x0_m && c.x() < footprint.x0_m + footprint.width_m &&
+                      c.y() >= footprint.y0_m && c.y() < footprint.y0_m + footprint.height_m;
+      l.Values(grid.ids().occupancy)[i] = in ? 0.95f : 0.02f;
+      l.Values(grid.ids().seen)[i] = 1.0f;
+      if (!in) continue;
+      l.Values(grid.ids().velocity_x_mps)[i] = static_cast<float>(vx);
+      l.Values(grid.ids().velocity_confidence)[i] = 1.0f;
+    }
+  }
+  // The next scan: the near side (the lowest row) hit where the body has moved, the rest of
+  // the footprint behind it unknown, everything else free.
+  const BoxM moved{footprint.x0_m + vx * kDtS, footprint.y0_m, footprint.width_m,
+                   footprint.height_m};
+  MeasurementGrid z = Measure(g, {BoxM{moved.x0_m, moved.y0_m, moved.width_m, kCellM}});
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromLocal({x, y}));
+      if (c.x() >= moved.x0_m && c.x() < moved.x0_m + moved.width_m &&
+          c.y() >= moved.y0_m + kCellM && c.y() < moved.y0_m + moved.height_m) {
+        z.p_occupied[g.StorageIndexOfLocal({x, y})] = kUnknownProbability;
+      }
+    }
+  }
+  z.touched.clear();
+  for (std::size_t i = 0; i < z.p_occupied.size(); ++i) {
+    if (z.p_occupied[i] != kUnknownProbability) z.touched.push_back(i);
+  }
+  grid.Update(z, kDtS);
+  EXPECT_EQ(ArgmaxClassIn(grid, BoxM{moved.x0_m, moved.y0_m, moved.width_m, kCellM}),
+            GridClass::kCyclist);
+}
+
 TEST(ExtendedGridTest, StereoEvidenceShiftsTheClass) {
   const std::vector<BoxM> world = {BoxM{1.5, 1.5, 0.45, 0.45}};
   ExtendedGrid grid(Geometry(24, 24));
