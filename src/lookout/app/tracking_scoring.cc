@@ -103,7 +103,7 @@ void TrackingScorer::Observe(const sim::TruthFrame& truth,
     }
   }
   const Pose2 vehicle_from_world = truth.ego.state.pose.Inverse();
-  const double match_m = eval::TrackingMetricOptions{}.match_distance_m;
+  const double match_m = tracker_.options().match_distance_m;
   const auto scored = [&](const std::vector<tracking::Track>& t) {
     return WithoutTracksOnUncountedActors(
         TrackPoints(t, world_from_odom_, vehicle_from_world, reach_), truth, countable, match_m);

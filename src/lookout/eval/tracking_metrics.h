@@ -36,6 +36,7 @@ class TrackingMetricsAccumulator {
   std::map<std::string, double> Values(const std::string& prefix) const;
 
   TrackingScores Scores() const { return evaluator_.Scores(); }
+  const TrackingMetricOptions& options() const { return options_; }
   double MeanGospa() const;
 
  private:

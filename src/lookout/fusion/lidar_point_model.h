@@ -78,7 +78,7 @@ double BoxHiddenExtentVariance(double visible_m, double length_m, double width_m
 // across: r^2 E[sin^2 t] = r^2 (1/2 - 1/pi), 18 % of r^2 (0.13 m for r = 0.3 m). `ray` points
 // from the lidar to the object (any length but zero); the covariance is in the same axes.
 inline constexpr double kSegmentationRoundBodyDepth = 1.0;
-inline constexpr double kGridRoundBodyDepth = 0.25 * 3.14159265358979323846;
+inline constexpr double kGridRoundBodyDepth = 0.25 * kPi;
 Eigen::Matrix2d RoundBodyCovariance(double radius_m, const Eigen::Vector2d& ray, double depth_r);
 
 // The lidar object's point covariance with the terms above added for an object of class

@@ -17,6 +17,8 @@ namespace {
 
 constexpr double kCellM = 0.15;
 constexpr double kDtS = 0.08;  // 12.5 Hz lidar
+// The same in stamp units: the scan pair's long baseline scales by the measurements' stamps.
+constexpr TimeNs kDtNs = 80'000'000;
 constexpr float kHit = 0.7f;
 constexpr float kFree = 0.3f;
 
@@ -89,7 +91,7 @@ ExtendedGrid TrackBox(int width, int height, Eigen::Vector2d start_m, Eigen::Vec
   for (int k = 0; k < cycles; ++k) {
     const Eigen::Vector2d p = start_m + velocity_mps * (k * kDtS);
     MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), size_m.x(), size_m.y()}});
-    z.stamp = (k + 1) * 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+    z.stamp = (k + 1) * kDtNs;
     grid.Update(z, kDtS);
   }
   return grid;
@@ -445,7 +447,7 @@ TEST(ExtendedGridTest, DISABLED_TwentyMetresPerSecondBoxIsTracked) {
     const Eigen::Vector2d p = start + v * (k * kDtS);
     const BoxM box{p.x(), p.y(), 1.8, 0.9};
     MeasurementGrid z = Measure(grid.geometry(), {box});
-    z.stamp = (k + 1) * 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+    z.stamp = (k + 1) * kDtNs;
     grid.Update(z, kDtS);
     if (k < kCycles - kAveraged) continue;
     int count = 0;
@@ -521,7 +523,7 @@ TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
     for (int k = 0; k < kSeen; ++k) {
       const Eigen::Vector2d p = start + v * (k * kDtS);
       MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), 0.45, 0.45}});
-      z.stamp = stamp += 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+      z.stamp = stamp += kDtNs;
       grid.Update(z, kDtS);
     }
     const double spread_before = MassSpreadM(grid, floor);
@@ -530,7 +532,7 @@ TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
     const double mass_before = MassNear(grid, seen_at, 1.0);
     for (int k = 0; k < kHidden; ++k) {
       MeasurementGrid unknown = Measure(grid.geometry(), {}, /*observed=*/false);
-      unknown.stamp = stamp += 80'000'000;
+      unknown.stamp = stamp += kDtNs;
       grid.Update(unknown, kDtS);
     }
     const Eigen::Vector2d truth = start + v * ((kSeen + kHidden - 1) * kDtS) + half_size;
@@ -629,7 +631,7 @@ std::pair<int, int> ScrollThroughStaticWorld(const FilterOptions& options) {
     yaw += yaw_rate_rps * kDtS;
     grid.Recenter(ego);
     MeasurementGrid z = Measure(grid.geometry(), world);
-    z.stamp = (k + 1) * 80'000'000;  // 12.5 Hz: the scan pair's long baseline needs stamps
+    z.stamp = (k + 1) * kDtNs;
     grid.Update(z, kDtS);
   }
   const auto& g = grid.geometry();
