@@ -99,7 +99,7 @@ void Pipeline::OnLidar(const LidarScan& scan) {
                                   fusion_->options().max_stereo_age_s) {
         camera = latest_stereo_.mount;
       }
-      tracking_->Step(*fused_, camera);
+      tracking_->Step(*fused_, camera, &scan);
       if (risk_ && tracking_->last_stamp() == fused_->stamp) {
         risk_->Step(fused_->stamp, fused_->ego_pose, tracking_->tracks());
       }

@@ -170,6 +170,7 @@ void TrackingStageOptions::Validate(const std::string& source) const {
   mht.Validate(source + ": mht");
   gnn.Validate(source + ": gnn");
   detections.Validate(source + ": detections");
+  visibility.Validate(source + ": visibility");
 }
 
 namespace {
@@ -300,16 +301,25 @@ void TrackingStage::Warn(std::string message) {
 }
 
 void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
-                         const std::optional<Pose2>& camera_mount) {
+                         const std::optional<Pose2>& camera_mount, const LidarScan* scan) {
   detections_ = DetectionsFromFusedObjects(frame, options_.detections,
                                            camera_history_.Update(frame), camera_mount,
                                            buildings_, &in_buildings_);
+  std::optional<tracking::ScanVisibility> scan_view;
+  if (scan && options_.scan_visibility) {
+    std::vector<Eigen::Vector2d> seen;
+    for (const tracking::Detection& d : detections_) seen.push_back(d.position_m);
+    scan_view.emplace(*scan, frame.ego_pose * scan->mount, options_.visibility, std::move(seen));
+  }
+  const tracking::OpenView open_view;
+  const tracking::SensorView& view =
+      scan_view ? static_cast<const tracking::SensorView&>(*scan_view) : open_view;
   const Clock::time_point start = Clock::now();
-  const bool accepted = tracker_->Step(frame.stamp, detections_);
+  const bool accepted = tracker_->Step(frame.stamp, detections_, view);
   step_ms_.push_back(MsSince(start));
   if (baseline_) {
     const Clock::time_point baseline_start = Clock::now();
-    baseline_->Step(frame.stamp, detections_);
+    baseline_->Step(frame.stamp, detections_, view);
     baseline_step_ms_.push_back(MsSince(baseline_start));
   }
   if (!accepted) {

@@ -59,6 +59,7 @@
 #include "lookout/fusion/fused_object.h"
 #include "lookout/tracking/gnn_tracker.h"
 #include "lookout/tracking/mht_tracker.h"
+#include "lookout/tracking/scan_visibility.h"
 #include "lookout/tracking/tracker.h"
 
 namespace lookout::app {
@@ -173,6 +174,11 @@ struct TrackingStageOptions {
   tracking::MhtOptions mht;
   tracking::GnnOptions gnn;
   DetectionOptions detections;
+  // Where the cycle's lidar scan could see (tracking/scan_visibility.h): tracks it could not
+  // see coast through the scan without a miss (both trackers). Off: every track could have
+  // been seen at every scan, the trackers' behaviour before 2026-12-03.
+  bool scan_visibility = true;
+  tracking::ScanVisibilityOptions visibility;
 
   void Validate(const std::string& source = "tracking options") const;
 };
@@ -182,10 +188,13 @@ class TrackingStage {
   explicit TrackingStage(const TrackingStageOptions& options = {});
 
   // One cycle. `camera_mount`: the camera whose frame the cycle's fusion used (nullopt: none).
+  // `scan`: the lidar scan of the cycle (taken at the frame's stamp, the ego at the frame's
+  // pose), which tells where the sensors could see; null: everywhere.
   // A frame whose stamp is not after the previous one's is refused by the trackers: the tracks
   // stay as they were and a warning is logged (warnings()).
   void Step(const fusion::FusedObjectFrame& frame,
-            const std::optional<Pose2>& camera_mount = std::nullopt);
+            const std::optional<Pose2>& camera_mount = std::nullopt,
+            const LidarScan* scan = nullptr);
   // The buildings of the ego's map in the odometry frame (empty: none).
   void SetBuildings(BuildingOutlines buildings) { buildings_ = std::move(buildings); }
   // Lidar-only objects left out so far for lying inside a building.

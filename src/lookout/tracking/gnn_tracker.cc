@@ -25,7 +25,7 @@ void GnnOptions::Validate(const std::string& source) const {
 
 GnnTracker::GnnTracker(const GnnOptions& options) : options_(options) { options_.Validate(); }
 
-bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
+bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const SensorView& view) {
   if (last_stamp_ && stamp <= *last_stamp_) {
     ++refused_;
     return false;
@@ -69,13 +69,14 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
     Track& t = tracks_[i];
     const int j = a.column_of_row[i];
     if (j == assignment::kUnassigned) {
-      t = AfterMiss(std::move(t));
+      const ViewFraction seen = view.View(t.Position(), t.object_class);
+      t = AfterMiss(options_, std::move(t), seen, stamp);
       continue;
     }
     const Detection& d = detections[static_cast<std::size_t>(j)];
     used[static_cast<std::size_t>(j)] = true;
     t.state = UpdateState(t.state, d.position_m, d.covariance).posterior;
-    t = AfterDetection(options_, std::move(t), d);
+    t = AfterDetection(options_, std::move(t), d, stamp);
   }
   // Delete tracks missed too often (in order, so ids stay sorted).
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),

@@ -42,7 +42,9 @@ class GnnTracker final : public Tracker {
   // One scan at `stamp`. A stamp not after the previous scan's is refused: nothing changes and
   // the call returns false (the caller logs it). Detections with a non-finite field or a
   // covariance that is not symmetric positive definite are dropped and counted.
-  bool Step(TimeNs stamp, const std::vector<Detection>& detections) override;
+  using Tracker::Step;
+  bool Step(TimeNs stamp, const std::vector<Detection>& detections,
+            const SensorView& view) override;
 
   // Every track, tentative ones included.
   const std::vector<Track>& tracks() const { return tracks_; }

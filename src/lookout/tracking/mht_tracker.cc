@@ -71,6 +71,9 @@ void MhtOptions::Validate(const std::string& source) const {
           "must be > 0");
   require(detection_probability > 0.0 && detection_probability < 1.0, "detection_probability",
           "must be in (0, 1)");
+  require(
+      hidden_detection_probability > 0.0 && hidden_detection_probability <= detection_probability,
+      "hidden_detection_probability", "must be in (0, detection_probability]");
   require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability",
           "must be in (0, 1)");
   require(positive(clutter_density_per_m2), "clutter_density_per_m2", "must be > 0");
@@ -104,6 +107,9 @@ struct MhtTracker::ScanWork {
   struct Branches {
     const Node* node = nullptr;
     ImmState predicted;
+    ViewFraction view;         // of the predicted track, SensorView
+    double log_detect = 0.0;   // log PD of this track at this scan
+    double log_miss = 0.0;     // log (1 - PD PG)
     std::vector<Gated> gated;  // increasing detection
     NodePtr missed;
     bool missed_made = false;
@@ -113,7 +119,7 @@ struct MhtTracker::ScanWork {
   std::vector<NodePtr> births;                          // per detection, made on first use
 };
 
-bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
+bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const SensorView& view) {
   if (last_stamp_ && stamp <= *last_stamp_) {
     ++refused_;
     return false;
@@ -128,8 +134,6 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
     }
   }
   const auto detection_count = static_cast<int>(detections.size());
-  const double pd = options_.detection_probability;
-  const double log_miss = std::log1p(-pd * options_.gate_probability);
   const double gate = ChiSquareQuantile(options_.gate_probability, 2.0);
 
   // 1. Predict and gate each distinct track hypothesis once.
@@ -142,6 +146,13 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
       b.node = node.get();
       b.predicted = PredictTo(imm_, node->imm, stamp);
       const ImmMeasurementPrediction p = PredictMeasurement(b.predicted, Eigen::Matrix2d::Zero());
+      // PD as the view has it at the predicted position (combined over the modes).
+      b.view = view.View(p.combined.z, node->track.object_class);
+      const double seen = std::clamp(b.view.seen, 0.0, 1.0);
+      const double pd = seen * options_.detection_probability +
+                        (1.0 - seen) * options_.hidden_detection_probability;
+      b.log_detect = std::log(pd);
+      b.log_miss = std::log1p(-pd * options_.gate_probability);
       for (int j = 0; j < detection_count; ++j) {
         const Detection& d = detections[static_cast<std::size_t>(j)];
         if (!ClassesCompatible(node->track.object_class, d.object_class)) continue;
@@ -173,15 +184,15 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
     problem.detections = detection_count;
     problem.false_alarm_cost = -std::log(options_.clutter_density_per_m2);
     problem.new_track_cost = -std::log(options_.new_track_density_per_m2);
+    double base = parent.log_probability;
     for (std::size_t t = 0; t < parent.tracks.size(); ++t) {
       const ScanWork::Branches& b = work.branches[work.index.at(parent.tracks[t].get())];
+      base += b.log_miss;
       for (const ScanWork::Gated& g : b.gated) {
         problem.pairs.push_back(
-            {static_cast<int>(t), g.detection, -(std::log(pd) + g.log_likelihood - log_miss)});
+            {static_cast<int>(t), g.detection, -(b.log_detect + g.log_likelihood - b.log_miss)});
       }
     }
-    const double base =
-        parent.log_probability + static_cast<double>(parent.tracks.size()) * log_miss;
     std::vector<RankedAssociation> ranked = BestAssociations(problem, m);
     for (std::size_t r = 0; r < ranked.size(); ++r) {
       children.push_back({base - ranked[r].cost, h, r, std::move(ranked[r].track_of_detection)});
@@ -236,7 +247,7 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
     if (!g.made) {
       g.made = true;
       const Detection& d = detections[static_cast<std::size_t>(j)];
-      Track track = AfterDetection(options_.management, b.node->track, d);
+      Track track = AfterDetection(options_.management, b.node->track, d, stamp);
       // The camera's evidence can end a track on a detection (a ghost): it takes the
       // detection with it.
       if (!Expired(options_.management, track)) {
@@ -253,7 +264,7 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all) {
   const auto missed = [&](ScanWork::Branches& b) -> NodePtr {
     if (!b.missed_made) {
       b.missed_made = true;
-      Track track = AfterMiss(b.node->track);
+      Track track = AfterMiss(options_.management, b.node->track, b.view, stamp);
       if (!Expired(options_.management, track)) {
         auto node = std::make_shared<Node>();
         node->tree = b.node->tree;

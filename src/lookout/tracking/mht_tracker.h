@@ -20,7 +20,12 @@
 //                + sum over new tracks:                    log lambda_NT
 // g is the IMM's measurement likelihood sum_j c_j N(z; H x_j, S_j) (1/m^2), PG the gate's
 // probability (g is not renormalised to the gate: PD PG g / PG = PD g), lambda_FA and lambda_NT
-// densities per m^2 and scan; the probabilities are normalised over the kept hypotheses.
+// densities per m^2 and scan; the probabilities are normalised over the kept hypotheses. PD is
+// each track's own at each scan: lower where the sensors could not see it (SensorView,
+// hidden_detection_probability), so that a hidden track is not held to account for the scan's
+// silence, and does not take a detection another explanation fits better (occluded-pedestrian:
+// a walker coasting behind a nearer one took a split return of that one, 10 m off its
+// prediction, and ran off after it).
 //
 // Pruning after each scan: the m best children (m = hypotheses_m, the cap on their number),
 // those below min_hypothesis_probability, and N-scan pruning (every hypothesis must descend from
@@ -59,6 +64,13 @@ struct MhtOptions {
 
   // Hypothesis scores.
   double detection_probability = 0.9;      // PD
+  // PD of a track the sensors could not see (SensorView): hidden tracks are seldom detected,
+  // so a hidden track's miss costs next to nothing and a detection it takes costs it much.
+  // A track seen by a fraction v (ViewFraction::seen) has
+  // PD = v PD + (1 - v) hidden_detection_probability.
+  // Not 0: a view is judged at the predicted position, which may be off (a walker stepping
+  // out from behind a parked car is seen before its prediction is).
+  double hidden_detection_probability = 0.05;
   double gate_probability = 0.999;         // PG, chi-square gate with 2 dof
   double clutter_density_per_m2 = 1e-4;    // lambda_FA: false alarms per m^2 and scan
   double new_track_density_per_m2 = 1e-3;  // lambda_NT: new targets per m^2 and scan
@@ -79,7 +91,9 @@ class MhtTracker final : public Tracker {
  public:
   explicit MhtTracker(const MhtOptions& options = {});
 
-  bool Step(TimeNs stamp, const std::vector<Detection>& detections) override;
+  using Tracker::Step;
+  bool Step(TimeNs stamp, const std::vector<Detection>& detections,
+            const SensorView& view) override;
   std::vector<Track> ConfirmedTracks() const override { return confirmed_; }
   std::int64_t dropped_detections() const override { return dropped_; }
   std::int64_t refused_scans() const override { return refused_; }

@@ -25,6 +25,11 @@ void TrackManagementOptions::Validate(const std::string& source) const {
   require(max_misses_vehicle >= 0, "max_misses_vehicle", "must be >= 0");
   require(max_misses_unknown >= 0, "max_misses_unknown", "must be >= 0");
   require(max_misses_tentative >= 0, "max_misses_tentative", "must be >= 0");
+  require(std::isfinite(max_hidden_distance_m) && max_hidden_distance_m >= 0.0,
+          "max_hidden_distance_m", "must be >= 0");
+  require(std::isfinite(max_hidden_s) && max_hidden_s >= 0.0, "max_hidden_s", "must be >= 0");
+  require(min_visible_fraction > 0.0 && min_visible_fraction <= 1.0, "min_visible_fraction",
+          "must be in (0, 1]");
   require(camera_detection_probability > 0.0 && camera_detection_probability < 1.0,
           "camera_detection_probability", "must be in (0, 1)");
   require(camera_ghost_probability > 0.0 && camera_ghost_probability < 1.0,
@@ -53,7 +58,7 @@ double ExistenceAfter(const TrackManagementOptions& o, double log_odds, CameraEv
 }
 
 bool Expired(const TrackManagementOptions& o, const Track& t) {
-  if (t.misses > MaxMisses(o, t)) return true;
+  if (t.misses > MaxMisses(o, t) || t.lost) return true;
   const double p = o.min_existence_probability;
   return p > 0.0 && t.existence_log_odds < std::log(p / (1.0 - p));
 }
@@ -75,15 +80,18 @@ Track BornTrack(const TrackManagementOptions& o, const Detection& d, TimeNs stam
   Track t;
   t.object_class = d.object_class;
   t.stamp = stamp;
+  t.last_detected = stamp;
   t.updates = 1;
   t.existence_log_odds = ExistenceAfter(o, 0.0, d.camera);
   if (t.updates >= UpdatesToConfirm(o, d)) t.status = TrackStatus::kConfirmed;
   return t;
 }
 
-Track AfterDetection(const TrackManagementOptions& o, Track t, const Detection& d) {
+Track AfterDetection(const TrackManagementOptions& o, Track t, const Detection& d, TimeNs stamp) {
   ++t.updates;
   t.misses = 0;
+  t.stamp = stamp;
+  t.last_detected = stamp;
   t.coasting = false;
   t.existence_log_odds = ExistenceAfter(o, t.existence_log_odds, d.camera);
   if (t.object_class == ObjectClass::kUnknown) t.object_class = d.object_class;
@@ -93,8 +101,21 @@ Track AfterDetection(const TrackManagementOptions& o, Track t, const Detection& 
   return t;
 }
 
-Track AfterMiss(Track t) {
-  ++t.misses;
+bool Hidden(const TrackManagementOptions& o, const ViewFraction& view) {
+  return view.seen < o.min_visible_fraction && view.in_view >= o.min_visible_fraction;
+}
+
+Track AfterMiss(const TrackManagementOptions& o, Track t, const ViewFraction& view, TimeNs stamp) {
+  t.stamp = stamp;
+  const double unseen_s = ToSeconds(stamp - t.last_detected);
+  const bool hidden = t.status == TrackStatus::kConfirmed && Hidden(o, view);
+  const bool bounded =
+      unseen_s <= o.max_hidden_s && unseen_s * t.Velocity().norm() <= o.max_hidden_distance_m;
+  if (!hidden) {
+    ++t.misses;
+  } else if (!bounded) {
+    t.lost = true;
+  }
   t.coasting = true;
   return t;
 }

@@ -9,6 +9,11 @@
 namespace lookout::tracking {
 namespace {
 
+constexpr TimeNs kScan = 80'000'000;  // 12.5 Hz
+constexpr ViewFraction kInView{1.0, 1.0};
+constexpr ViewFraction kHidden{1.0, 0.2};     // in view, mostly behind something nearer
+constexpr ViewFraction kOutOfView{0.3, 0.3};  // mostly outside the fan
+
 Detection Seen(int sensors, ObjectClass c = ObjectClass::kCar) {
   Detection d;
   d.sensors = sensors;
@@ -21,13 +26,13 @@ TEST(TrackManagement, ConfirmedAfterOneUpdateWithTwoSensorsAndThreeWithOne) {
   EXPECT_EQ(BornTrack(o, Seen(2), 0).status, TrackStatus::kConfirmed);
   Track t = BornTrack(o, Seen(1), 0);
   EXPECT_EQ(t.status, TrackStatus::kTentative);
-  t = AfterDetection(o, t, Seen(1));
+  t = AfterDetection(o, t, Seen(1), 0);
   EXPECT_EQ(t.status, TrackStatus::kTentative);
-  t = AfterDetection(o, t, Seen(1));
+  t = AfterDetection(o, t, Seen(1), 0);
   EXPECT_EQ(t.status, TrackStatus::kConfirmed);
   EXPECT_EQ(t.updates, 3);
   // A second-sensor sighting confirms a tentative track at once.
-  Track u = AfterDetection(o, BornTrack(o, Seen(1), 0), Seen(2));
+  Track u = AfterDetection(o, BornTrack(o, Seen(1), 0), Seen(2), 0);
   EXPECT_EQ(u.status, TrackStatus::kConfirmed);
 }
 
@@ -37,27 +42,77 @@ TEST(TrackManagement, MissesCoastThenExpireByClass) {
   o.max_misses_tentative = 1;
   Track walker = BornTrack(o, Seen(2, ObjectClass::kPedestrian), 0);
   for (int miss = 1; miss <= 4; ++miss) {
-    walker = AfterMiss(walker);
+    walker = AfterMiss(o, walker, kInView, miss * kScan);
     EXPECT_TRUE(walker.coasting);
     EXPECT_EQ(walker.misses, miss);
     EXPECT_FALSE(Expired(o, walker)) << miss;
   }
-  EXPECT_TRUE(Expired(o, AfterMiss(walker)));
-  walker = AfterDetection(o, walker, Seen(1));
+  EXPECT_TRUE(Expired(o, AfterMiss(o, walker, kInView, 5 * kScan)));
+  walker = AfterDetection(o, walker, Seen(1), 5 * kScan);
   EXPECT_EQ(walker.misses, 0);
   EXPECT_FALSE(walker.coasting);
+  EXPECT_EQ(walker.last_detected, 5 * kScan);
 
   Track tentative = BornTrack(o, Seen(1, ObjectClass::kCar), 0);
-  EXPECT_FALSE(Expired(o, AfterMiss(tentative)));
-  EXPECT_TRUE(Expired(o, AfterMiss(AfterMiss(tentative))));
+  EXPECT_FALSE(Expired(o, AfterMiss(o, tentative, kInView, kScan)));
+  EXPECT_TRUE(
+      Expired(o, AfterMiss(o, AfterMiss(o, tentative, kInView, kScan), kInView, 2 * kScan)));
+}
+
+// A confirmed track that something nearer hid is not missed while its prediction is worth
+// something, max_hidden_s for a walker, max_hidden_distance_m for a faster road user; then it
+// is lost. Seen from min_visible_fraction on; a track out of the view, or a tentative one, is
+// missed.
+TEST(TrackManagement, AHiddenTrackCoastsWithoutMissesWhileItsPredictionHolds) {
+  TrackManagementOptions o;
+  o.max_misses_pedestrian = 4;
+  o.max_hidden_s = 3.0;
+  o.max_hidden_distance_m = 6.0;
+  EXPECT_TRUE(Hidden(o, kHidden));
+  EXPECT_FALSE(Hidden(o, kInView));
+  EXPECT_FALSE(Hidden(o, kOutOfView));
+  EXPECT_FALSE(Hidden(o, {1.0, o.min_visible_fraction}));
+
+  // A walker at 1.5 m/s: 3 s hidden (4.5 m) without a miss, then misses.
+  Track walker = BornTrack(o, Seen(2, ObjectClass::kPedestrian), 0);
+  walker.state.mean = Eigen::Vector4d(0.0, 0.0, 1.5, 0.0);
+  int k = 1;
+  for (; ToSeconds(k * kScan) <= o.max_hidden_s; ++k) {
+    walker = AfterMiss(o, walker, kHidden, k * kScan);
+    EXPECT_TRUE(walker.coasting);
+    ASSERT_EQ(walker.misses, 0) << k;
+    ASSERT_FALSE(Expired(o, walker)) << k;
+  }
+  EXPECT_TRUE(Expired(o, AfterMiss(o, walker, kHidden, k * kScan)));
+  EXPECT_EQ(AfterMiss(o, walker, kInView, k * kScan).misses, 1);
+  EXPECT_EQ(AfterMiss(o, walker, kOutOfView, k * kScan).misses, 1);
+  EXPECT_FALSE(Expired(o, AfterMiss(o, walker, kInView, k * kScan)));
+
+  // Seen again: the clock starts anew.
+  walker = AfterDetection(o, walker, Seen(2), k * kScan);
+  EXPECT_FALSE(Expired(o, AfterMiss(o, walker, kHidden, (k + 1) * kScan)));
+
+  // A cyclist at 5 m/s: 6 m unseen after 1.2 s.
+  Track cyclist = BornTrack(o, Seen(2, ObjectClass::kCyclist), 0);
+  cyclist.state.mean = Eigen::Vector4d(0.0, 0.0, 3.0, -4.0);
+  k = 1;
+  for (; ToSeconds(k * kScan) * 5.0 <= o.max_hidden_distance_m; ++k) {
+    cyclist = AfterMiss(o, cyclist, kHidden, k * kScan);
+    ASSERT_FALSE(Expired(o, cyclist)) << k;
+  }
+  EXPECT_EQ(k, 16);  // 1.28 s
+  EXPECT_TRUE(Expired(o, AfterMiss(o, cyclist, kHidden, k * kScan)));
+
+  const Track tentative = BornTrack(o, Seen(1, ObjectClass::kPedestrian), 0);
+  EXPECT_EQ(AfterMiss(o, tentative, kHidden, kScan).misses, 1);
 }
 
 TEST(TrackManagement, AnUnknownTrackLearnsItsClass) {
   const TrackManagementOptions o;
   Track t = BornTrack(o, Seen(1, ObjectClass::kUnknown), 0);
-  t = AfterDetection(o, t, Seen(1, ObjectClass::kCyclist));
+  t = AfterDetection(o, t, Seen(1, ObjectClass::kCyclist), 0);
   EXPECT_EQ(t.object_class, ObjectClass::kCyclist);
-  t = AfterDetection(o, t, Seen(1, ObjectClass::kUnknown));
+  t = AfterDetection(o, t, Seen(1, ObjectClass::kUnknown), 0);
   EXPECT_EQ(t.object_class, ObjectClass::kCyclist) << "kept once known";
 }
 
@@ -88,23 +143,25 @@ TEST(TrackManagement, TheCamerasSilenceEndsAGhost) {
   const TrackManagementOptions o;
   Track ghost = BornTrack(o, WithCamera(CameraEvidence::kUnseen), 0);
   EXPECT_FALSE(Expired(o, ghost));
-  ghost = AfterDetection(o, ghost, WithCamera(CameraEvidence::kUnseen));
+  ghost = AfterDetection(o, ghost, WithCamera(CameraEvidence::kUnseen), kScan);
   EXPECT_TRUE(Expired(o, ghost));
   EXPECT_EQ(ghost.status, TrackStatus::kTentative);
 
   Track walker = BornTrack(o, WithCamera(CameraEvidence::kSeen, 2), 0);
   for (int k = 0; k < 20; ++k) {
     const bool camera_missed = k % 5 == 4;  // one frame in five
-    walker = AfterDetection(
-        o, walker, WithCamera(camera_missed ? CameraEvidence::kUnseen : CameraEvidence::kSeen,
-                              camera_missed ? 1 : 2));
+    walker =
+        AfterDetection(o, walker,
+                       WithCamera(camera_missed ? CameraEvidence::kUnseen : CameraEvidence::kSeen,
+                                  camera_missed ? 1 : 2),
+                       (k + 1) * kScan);
     EXPECT_FALSE(Expired(o, walker)) << k;
   }
   EXPECT_GT(walker.existence_log_odds, 0.0);
 
   Track beside = BornTrack(o, WithCamera(CameraEvidence::kNone), 0);
   for (int k = 0; k < 10; ++k) {
-    beside = AfterDetection(o, beside, WithCamera(CameraEvidence::kNone));
+    beside = AfterDetection(o, beside, WithCamera(CameraEvidence::kNone), (k + 1) * kScan);
   }
   EXPECT_FALSE(Expired(o, beside));
   EXPECT_EQ(beside.existence_log_odds, 0.0);

@@ -49,7 +49,9 @@ struct Track {
   Gaussian state;  // (x, y, vx, vy)
   TimeNs stamp = 0;
   int updates = 0;       // detections associated so far
-  int misses = 0;        // consecutive scans without one
+  int misses = 0;        // consecutive scans without one in which a sensor could have seen it
+  TimeNs last_detected = 0;  // stamp of the last scan that brought it a detection
+  bool lost = false;         // hidden for longer than its prediction is worth (track_management.h)
   bool coasting = false; // the last scan brought no detection
   // The log odds that the track is a road user rather than a ghost of the lidar's object
   // source, from the camera's evidence on its detections (track_management.h); 0 without any.
@@ -73,15 +75,48 @@ bool DetectionUsable(const Detection& detection);
 // Whether a detection of class `detection` may join a track of class `track`.
 bool ClassesCompatible(ObjectClass track, ObjectClass detection);
 
+// How much of an object the sensors could see at one scan (SensorView), as fractions of it:
+// `in_view`, inside the sensors' field of view and reach; `seen`, in view and not hidden
+// behind anything nearer (seen <= in_view).
+struct ViewFraction {
+  double in_view = 1.0;
+  double seen = 1.0;
+};
+
+// Where the sensors could see at one scan (seed 004 VII: tracks coast "through occlusion"), at
+// a position in the tracker's frame, for an object of a class. A scan without a detection for
+// a track the sensors could not see says little against it: the MHT gives such a track a low
+// detection probability (mht_tracker.h), and track management does not count the scan as a
+// miss when something nearer hid it (track_management.h). scan_visibility.h makes a view from
+// a lidar scan.
+class SensorView {
+ public:
+  virtual ~SensorView() = default;
+  virtual ViewFraction View(const Eigen::Vector2d& position_m, ObjectClass c) const = 0;
+};
+
+// A view that sees everything everywhere: every scan could have detected every track.
+class OpenView final : public SensorView {
+ public:
+  ViewFraction View(const Eigen::Vector2d& /*position_m*/, ObjectClass /*c*/) const override {
+    return {};
+  }
+};
+
 class Tracker {
  public:
   virtual ~Tracker() = default;
 
-  // One scan at `stamp`, detections in a ground-fixed frame. A stamp not after the previous
-  // scan's is refused: nothing changes and the call returns false (the caller logs it).
-  // Detections with a non-finite field or a covariance that is not symmetric positive definite
-  // are dropped and counted.
-  virtual bool Step(TimeNs stamp, const std::vector<Detection>& detections) = 0;
+  // One scan at `stamp`, detections in a ground-fixed frame, `view` where the sensors could see
+  // (the same frame). A stamp not after the previous scan's is refused: nothing changes and the
+  // call returns false (the caller logs it). Detections with a non-finite field or a covariance
+  // that is not symmetric positive definite are dropped and counted.
+  virtual bool Step(TimeNs stamp, const std::vector<Detection>& detections,
+                    const SensorView& view) = 0;
+  // The same with a view that sees everywhere (OpenView).
+  bool Step(TimeNs stamp, const std::vector<Detection>& detections) {
+    return Step(stamp, detections, OpenView{});
+  }
 
   // The confirmed tracks after the last scan, in increasing id order.
   virtual std::vector<Track> ConfirmedTracks() const = 0;
