@@ -1,5 +1,6 @@
 #include "lookout/app/tracking_scoring.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -69,6 +70,12 @@ std::vector<bool> CountableActors(const sim::TruthFrame& truth, const SensorReac
   return out;
 }
 
+bool AfterContact(const sim::TruthFrame& truth) {
+  return std::any_of(truth.actors.begin(), truth.actors.end(), [&](const sim::ActorTruth& a) {
+    return a.contact_time_s && ToSeconds(truth.stamp) >= *a.contact_time_s;
+  });
+}
+
 std::vector<eval::PointObject> WithoutTracksOnUncountedActors(
     const std::vector<eval::PointObject>& tracks, const sim::TruthFrame& truth,
     const std::vector<bool>& countable, double match_distance_m) {
@@ -95,6 +102,7 @@ TrackingScorer::TrackingScorer(const Pose2& world_from_odom, const SensorReach& 
 void TrackingScorer::Observe(const sim::TruthFrame& truth,
                              const std::vector<tracking::Track>& tracks,
                              const std::vector<tracking::Track>* baseline_tracks) {
+  if (AfterContact(truth)) return;
   const std::vector<bool> countable = CountableActors(truth, reach_, seen_);
   std::vector<eval::PointObject> truths;
   for (std::size_t i = 0; i < truth.actors.size(); ++i) {

@@ -16,6 +16,10 @@
 // just left the lidar's fan while its front, where the track is, has not; the lidar objects'
 // scoring treats an object on an actor that does not count the same way (docs/grid.md).
 //
+// Which frames count: those before the first contact of any actor with the ego (the truth's
+// contact time). After it the simulator's actors drive on through the ego, which no real scene
+// does: the lidar sees a car inside the ego's box, and the trackers follow what it makes of it.
+//
 // What is compared: the actor's footprint centre and the track's position (the tracking stage
 // tracks centres, app/tracking_stage.h), in the world: the track through the odometry frame's
 // true pose, so that dead-reckoning drift counts as track error, as it would on a real car.
@@ -50,6 +54,9 @@ std::vector<bool> CountableActors(const sim::TruthFrame& truth, const SensorReac
 
 // `tracks` (world) without those whose nearest actor of `truth` does not count (`countable`,
 // indexed as truth.actors) and lies within `match_distance_m` of them. Pure.
+// Whether an actor of `truth` has touched the ego by its stamp. Pure.
+bool AfterContact(const sim::TruthFrame& truth);
+
 std::vector<eval::PointObject> WithoutTracksOnUncountedActors(
     const std::vector<eval::PointObject>& tracks, const sim::TruthFrame& truth,
     const std::vector<bool>& countable, double match_distance_m);
@@ -59,7 +66,8 @@ class TrackingScorer {
   TrackingScorer(const Pose2& world_from_odom, const SensorReach& reach);
 
   // After a cycle in which the trackers ran: the truth at the same stamp, the tracker's
-  // confirmed tracks and the baseline's (nullptr: no baseline).
+  // confirmed tracks and the baseline's (nullptr: no baseline). A frame at or after a contact
+  // is not scored.
   void Observe(const sim::TruthFrame& truth, const std::vector<tracking::Track>& tracks,
                const std::vector<tracking::Track>* baseline_tracks);
 

@@ -39,5 +39,20 @@ TEST(TrackingScorerTest, TracksOnUncountedActorsAreLeftOut) {
   EXPECT_EQ(WithoutTracksOnUncountedActors(tracks, truth, {true, true}, 2.0).size(), 5u);
 }
 
+// Frames from the first contact on are not scored: the contact time of any actor present, at
+// or before the frame's stamp.
+TEST(TrackingScorerTest, FramesFromTheFirstContactOnAreNotScored) {
+  sim::TruthFrame truth;
+  truth.stamp = FromSeconds(7.4);
+  truth.actors = {ActorAt(0, 0.0, 0.0), ActorAt(1, 10.0, 0.0)};
+  EXPECT_FALSE(AfterContact(truth));
+  truth.actors[1].contact_time_s = 7.42;
+  EXPECT_FALSE(AfterContact(truth));
+  truth.stamp = FromSeconds(7.42);
+  EXPECT_TRUE(AfterContact(truth));
+  truth.stamp = FromSeconds(9.0);
+  EXPECT_TRUE(AfterContact(truth));
+}
+
 }  // namespace
 }  // namespace lookout::app
