@@ -88,7 +88,7 @@ ViewFraction ScanVisibility::View(const Eigen::Vector2d& position_m, ObjectClass
   std::int64_t in_view = 0, seen = 0;
   for (std::int64_t i = std::max<std::int64_t>(first, 0); i <= std::min(last, count - 1); ++i) {
     ++in_view;
-    const double r = ranges_m_[static_cast<std::size_t>(i)];
+    const auto r = static_cast<double>(ranges_m_[static_cast<std::size_t>(i)]);
     if (r >= nearest_face || r >= no_return_m_) ++seen;  // false for NaN; +inf: no return
   }
   const auto beams = static_cast<double>(last - first + 1);
