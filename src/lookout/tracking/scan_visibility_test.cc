@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "lookout/core/input_error.h"
 
@@ -130,12 +131,15 @@ TEST(ScanVisibility, DetectionsOverruleTheBeamsAndBrokenScansSeeNothing) {
 TEST(ScanVisibility, ValidateNamesTheField) {
   ScanVisibilityOptions o;
   o.vehicle_half_length_m = -1.0;
-  try {
-    o.Validate("test");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("vehicle_half_length_m"), std::string::npos);
-  }
+  const std::string message = [&] {
+    try {
+      o.Validate("test");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  }();
+  EXPECT_NE(message.find("vehicle_half_length_m"), std::string::npos) << message;
 }
 
 }  // namespace
