@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "lookout/sim/shapes.h"
+
 namespace lookout::app {
 namespace {
 
@@ -91,7 +93,15 @@ std::vector<eval::PointObject> WithoutTracksOnUncountedActors(
         nearest_counts = countable[i];
       }
     }
-    if (nearest_counts || nearest > match_distance_m) out.push_back(t);
+    const bool on_uncounted_footprint = [&] {
+      for (std::size_t i = 0; i < truth.actors.size(); ++i) {
+        if (!countable[i] && sim::Contains(truth.actors[i].footprint, t.position_m)) return true;
+      }
+      return false;
+    }();
+    if ((nearest_counts || nearest > match_distance_m) && !on_uncounted_footprint) {
+      out.push_back(t);
+    }
   }
   return out;
 }

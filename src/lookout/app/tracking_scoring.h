@@ -12,9 +12,11 @@
 // yet cannot be tracked by anyone, and is left out until it is. Tracks are scored over the same
 // region: a track outside the sensors' reach (one coasting on behind the ego, say) is neither a
 // match nor a false track, as the truth there is not counted either. Nor is a track on an actor
-// that does not count (its nearest actor, within the match distance): a car whose centre has
-// just left the lidar's fan while its front, where the track is, has not; the lidar objects'
-// scoring treats an object on an actor that does not count the same way (docs/grid.md).
+// that does not count (its nearest actor, within the match distance, or one whose footprint
+// holds the track): a car whose centre has just left the lidar's fan while its front, where the
+// track is, has not; a truck 33 m off, its centre beyond the camera's depth and the lidar's
+// window, tracked on its front 2.9 m from its centre. The lidar objects' scoring treats an
+// object on an actor that does not count by its nearest actor (docs/grid.md).
 //
 // Which frames count: those before the first contact of any actor with the ego (the truth's
 // contact time). After it the simulator's actors drive on through the ego, which no real scene
@@ -53,7 +55,8 @@ std::vector<bool> CountableActors(const sim::TruthFrame& truth, const SensorReac
                                   std::vector<bool>& seen);
 
 // `tracks` (world) without those whose nearest actor of `truth` does not count (`countable`,
-// indexed as truth.actors) and lies within `match_distance_m` of them. Pure.
+// indexed as truth.actors) and lies within `match_distance_m` of them, and those inside the
+// footprint of an actor that does not count. Pure.
 // Whether an actor of `truth` has touched the ego by its stamp. Pure.
 bool AfterContact(const sim::TruthFrame& truth);
 

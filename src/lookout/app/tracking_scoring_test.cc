@@ -20,8 +20,9 @@ std::vector<std::int64_t> Ids(const std::vector<eval::PointObject>& objects) {
   return ids;
 }
 
-// A track on an actor that does not count is neither a match nor a false track; a track on
-// none, or nearer a counted actor, stays to be scored.
+// A track on an actor that does not count (the nearest, within the match distance, or one
+// whose footprint holds it) is neither a match nor a false track; a track on none, or nearer a
+// counted actor, stays to be scored.
 TEST(TrackingScorerTest, TracksOnUncountedActorsAreLeftOut) {
   sim::TruthFrame truth;
   truth.actors = {ActorAt(0, 0.0, 0.0), ActorAt(1, 10.0, 0.0)};
@@ -37,6 +38,17 @@ TEST(TrackingScorerTest, TracksOnUncountedActorsAreLeftOut) {
             (std::vector<std::int64_t>{1, 3, 4}));
   // With every actor counted, nothing is left out.
   EXPECT_EQ(WithoutTracksOnUncountedActors(tracks, truth, {true, true}, 2.0).size(), 5u);
+
+  // A truck that does not count, tracked on its front 2.9 m from its centre: inside its
+  // footprint, left out; the same point beside a car's footprint stays.
+  sim::TruthFrame trucks;
+  trucks.actors = {ActorAt(0, 30.0, 0.0)};
+  trucks.actors[0].footprint = sim::Shape::Box(trucks.actors[0].state.pose, 8.0, 2.5, 0);
+  const std::vector<eval::PointObject> on_front = {{1, {27.1, 0.2}}};
+  EXPECT_TRUE(WithoutTracksOnUncountedActors(on_front, trucks, {false}, 2.0).empty());
+  EXPECT_EQ(WithoutTracksOnUncountedActors(on_front, trucks, {true}, 2.0).size(), 1u);
+  trucks.actors[0].footprint = sim::Shape::Box(trucks.actors[0].state.pose, 4.5, 1.8, 0);
+  EXPECT_EQ(WithoutTracksOnUncountedActors(on_front, trucks, {false}, 2.0).size(), 1u);
 }
 
 // Frames from the first contact on are not scored: the contact time of any actor present, at
