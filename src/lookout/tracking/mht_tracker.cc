@@ -148,7 +148,8 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
       const ImmMeasurementPrediction p = PredictMeasurement(b.predicted, Eigen::Matrix2d::Zero());
       // PD as the view has it at the predicted position (combined over the modes).
       b.view = view.View(p.combined.z, node->track.object_class);
-      const double seen = std::clamp(b.view.seen, 0.0, 1.0);
+      // A view that cannot say (NaN) is taken to have seen nothing.
+      const double seen = std::isfinite(b.view.seen) ? std::clamp(b.view.seen, 0.0, 1.0) : 0.0;
       const double pd = seen * options_.detection_probability +
                         (1.0 - seen) * options_.hidden_detection_probability;
       b.log_detect = std::log(pd);
