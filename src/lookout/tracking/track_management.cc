@@ -107,16 +107,15 @@ bool Hidden(const TrackManagementOptions& o, const ViewFraction& view) {
 
 Track AfterMiss(const TrackManagementOptions& o, Track t, const ViewFraction& view, TimeNs stamp) {
   t.stamp = stamp;
-  const double unseen_s = ToSeconds(stamp - t.last_detected);
-  const bool hidden = t.status == TrackStatus::kConfirmed && Hidden(o, view);
-  const bool bounded =
-      unseen_s <= o.max_hidden_s && unseen_s * t.Velocity().norm() <= o.max_hidden_distance_m;
-  if (!hidden) {
-    ++t.misses;
-  } else if (!bounded) {
-    t.lost = true;
-  }
   t.coasting = true;
+  if (t.status != TrackStatus::kConfirmed || !Hidden(o, view)) {
+    ++t.misses;
+    return t;
+  }
+  const double unseen_s = ToSeconds(stamp - t.last_detected);
+  // A state without a velocity (the trackers' always have one) is bounded by time alone.
+  const double speed = t.state.mean.size() >= 4 ? t.Velocity().norm() : 0.0;
+  if (unseen_s > o.max_hidden_s || unseen_s * speed > o.max_hidden_distance_m) t.lost = true;
   return t;
 }
 
