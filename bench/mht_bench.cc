@@ -10,7 +10,6 @@
 #include <benchmark/benchmark.h>
 
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "lookout/tracking/benchmark_scene.h"
@@ -63,10 +62,11 @@ LidarScan WalledScan() {
   return scan;
 }
 
-ScanVisibility SceneView() {
-  std::vector<Eigen::Vector2d> detections;
-  for (const Detection& d : Scene().scans[kWarmUpScans]) detections.push_back(d.position_m);
-  return ScanVisibility(WalledScan(), Pose2{}, {}, std::move(detections));
+// Where the timed scan's detections lie: the view's overrule.
+std::vector<Eigen::Vector2d> SceneDetectionPositions() {
+  std::vector<Eigen::Vector2d> out;
+  for (const Detection& d : Scene().scans[kWarmUpScans]) out.push_back(d.position_m);
+  return out;
 }
 
 template <typename T>
@@ -90,7 +90,7 @@ BENCHMARK(BM_MhtStep)->Args({10, 3})->Args({1, 3})->Args({30, 3})->Unit(benchmar
 
 void BM_MhtStepWithScanView(benchmark::State& s) {
   const MhtTracker warm = WarmedUp(MhtTracker(BenchOptions(10, 3)));
-  TimeStep(s, warm, SceneView());
+  TimeStep(s, warm, ScanVisibility(WalledScan(), Pose2{}, {}, SceneDetectionPositions()));
 }
 BENCHMARK(BM_MhtStepWithScanView)->Unit(benchmark::kMillisecond);
 
@@ -98,8 +98,7 @@ BENCHMARK(BM_MhtStepWithScanView)->Unit(benchmark::kMillisecond);
 // what the tracking stage adds to a cycle besides the trackers' own queries.
 void BM_ScanViewBuildAndQuery(benchmark::State& s) {
   const LidarScan scan = WalledScan();
-  std::vector<Eigen::Vector2d> detections;
-  for (const Detection& d : Scene().scans[kWarmUpScans]) detections.push_back(d.position_m);
+  const std::vector<Eigen::Vector2d> detections = SceneDetectionPositions();
   const std::vector<Eigen::Vector2d>& targets = Scene().truth[kWarmUpScans];
   for (auto _ : s) {
     const ScanVisibility view(scan, Pose2{}, {}, detections);

@@ -86,19 +86,17 @@ std::vector<eval::PointObject> WithoutTracksOnUncountedActors(
   for (const eval::PointObject& t : tracks) {
     double nearest = std::numeric_limits<double>::infinity();
     bool nearest_counts = true;
+    bool on_uncounted_footprint = false;
     for (std::size_t i = 0; i < truth.actors.size(); ++i) {
       const double d = (truth.actors[i].state.pose.translation - t.position_m).norm();
       if (d < nearest) {
         nearest = d;
         nearest_counts = countable[i];
       }
-    }
-    const bool on_uncounted_footprint = [&] {
-      for (std::size_t i = 0; i < truth.actors.size(); ++i) {
-        if (!countable[i] && sim::Contains(truth.actors[i].footprint, t.position_m)) return true;
+      if (!countable[i] && sim::Contains(truth.actors[i].footprint, t.position_m)) {
+        on_uncounted_footprint = true;
       }
-      return false;
-    }();
+    }
     if ((nearest_counts || nearest > match_distance_m) && !on_uncounted_footprint) {
       out.push_back(t);
     }

@@ -305,21 +305,21 @@ void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
   detections_ = DetectionsFromFusedObjects(frame, options_.detections,
                                            camera_history_.Update(frame), camera_mount,
                                            buildings_, &in_buildings_);
+  const tracking::OpenView open_view;
+  const tracking::SensorView* view = &open_view;
   std::optional<tracking::ScanVisibility> scan_view;
   if (scan && options_.scan_visibility) {
     std::vector<Eigen::Vector2d> seen;
     for (const tracking::Detection& d : detections_) seen.push_back(d.position_m);
-    scan_view.emplace(*scan, frame.ego_pose * scan->mount, options_.visibility, std::move(seen));
+    view = &scan_view.emplace(*scan, frame.ego_pose * scan->mount, options_.visibility,
+                              std::move(seen));
   }
-  const tracking::OpenView open_view;
-  const tracking::SensorView& view =
-      scan_view ? static_cast<const tracking::SensorView&>(*scan_view) : open_view;
   const Clock::time_point start = Clock::now();
-  const bool accepted = tracker_->Step(frame.stamp, detections_, view);
+  const bool accepted = tracker_->Step(frame.stamp, detections_, *view);
   step_ms_.push_back(MsSince(start));
   if (baseline_) {
     const Clock::time_point baseline_start = Clock::now();
-    baseline_->Step(frame.stamp, detections_, view);
+    baseline_->Step(frame.stamp, detections_, *view);
     baseline_step_ms_.push_back(MsSince(baseline_start));
   }
   if (!accepted) {
