@@ -1,5 +1,6 @@
 #include "lookout/fusion/fuse_objects.h"
 
+#include <Eigen/Geometry>
 #include <optional>
 
 #include "lookout/core/chi_square.h"
@@ -35,7 +36,31 @@ Gaussian2 FusedVelocity(const LidarObject& lidar, const stereo::StereoPoint& ste
   return from_stereo;
 }
 
+// The point of `box` nearest to `p` (p itself inside it).
+Vector2d NearestPointOnBox(const stereo::OrientedBox& box, const Vector2d& p) {
+  const Eigen::Rotation2Dd to_world(box.yaw_rad);
+  const Vector2d local = to_world.inverse() * (p - box.center_m);
+  const Vector2d half(0.5 * box.length_m, 0.5 * box.width_m);
+  return box.center_m + to_world * local.cwiseMax(-half).cwiseMin(half);
+}
+
 }  // namespace
+
+bool HasFragments(ObjectClass c) {
+  return c == ObjectClass::kCyclist || c == ObjectClass::kCar || c == ObjectClass::kTruck;
+}
+
+bool IsFragmentOf(const LidarObject& fragment, const stereo::StereoPoint& stereo,
+                  const Matrix2d& stereo_covariance, const AssociationGate& gate) {
+  if (!HasFragments(stereo.object_class)) return false;
+  for (const Vector2d& end : {fragment.front_start_m, fragment.front_end_m}) {
+    const Vector2d on_box = NearestPointOnBox(stereo.footprint, end);
+    const double d2 =
+        gate.DistanceSquared(on_box, stereo_covariance, end, fragment.point_covariance);
+    if (!gate.Accepts(d2)) return false;
+  }
+  return true;
+}
 
 std::array<double, kAllObjectClasses.size()> StereoClassPmf(ObjectClass reported,
                                                             double confidence) {
@@ -91,6 +116,17 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     stereo_taken[pair.stereo] = true;
   }
 
+  // Fragments: an unpaired lidar object on the footprint of a stereo object that paired
+  // another (fuse_objects.h).
+  std::vector<bool> fragment(lidar_objects.size(), false);
+  for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
+    if (stereo_of_lidar[j]) continue;
+    for (std::size_t i = 0; i < stereo.size() && !fragment[j]; ++i) {
+      fragment[j] = stereo_taken[i] &&
+                    IsFragmentOf(*lidar_objects[j], stereo[i], stereo_points[i].covariance, gate);
+    }
+  }
+
   result.lidar.stamp = lidar.stamp;
   result.lidar.mount = lidar.mount;
   result.lidar.ego_pose = lidar.ego_pose;
@@ -108,6 +144,10 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     // see keeps its source's (the grid's own class would be the one to use: not measured yet).
     const auto paired = stereo_of_lidar[j];
     LidarObject& as_fused = result.lidar.objects.emplace_back(l);
+    if (fragment[j]) {
+      result.fragment_lidar_ids.push_back(l.id);
+      continue;
+    }
     if (paired) {
       as_fused.point_covariance = LidarPointCovariance(l, stereo[*paired].object_class,
                                                        lidar.mount.translation,

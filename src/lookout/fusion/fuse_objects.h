@@ -20,6 +20,7 @@
 #include "lookout/core/messages.h"
 #include "lookout/fusion/fused_object.h"
 #include "lookout/fusion/fusion_options.h"
+#include "lookout/fusion/gate.h"
 #include "lookout/stereo/stereo_point.h"
 
 namespace lookout::fusion {
@@ -30,15 +31,39 @@ struct FuseObjectsResult {
   // Lidar objects left out for a non-finite point or velocity or a covariance that is not
   // positive definite (counted; the lidar stage should never make one).
   std::vector<std::uint32_t> dropped_lidar_ids;
+  // Lidar objects left out as fragments of a body the camera paired with another of them
+  // (IsFragmentOf), in the lidar frame's order.
+  std::vector<std::uint32_t> fragment_lidar_ids;
   // The lidar objects as fused: the usable ones, in their order, each with the point
   // covariance fusion gave it (LidarPointCovariance: with the camera's class where paired).
   LidarObjectFrame lidar;
 };
 
 // `stereo` must already be in the vehicle frame at lidar.stamp (FusionEngine predicts it).
+//
+// Beyond the paper, fragments: a long body can break into several lidar objects where its
+// outline has gaps at the scan's height (a bicycle between its wheels; a car's wheel arches;
+// close up, returns lost on dark paint), while the camera sees one object. The camera pairs one
+// fragment; left alone, each other one would be a lidar-only object of its own, on which the
+// tracker starts a second track beside the first (cyclist-crossing: a split cyclist's two
+// tracks, docs/fusion.md). An unpaired lidar object whose front segment lies on the footprint of
+// a stereo object that paired another lidar object (IsFragmentOf) is left out of the fused
+// list and counted. Only the camera's cyclists, cars and trucks: a walker is one arc, and two
+// walkers side by side would otherwise be one.
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
                               const FusionOptions& options);
+
+// Whether the stereo class is a body long enough to break into several lidar objects.
+bool HasFragments(ObjectClass c);
+
+// Whether `fragment` is a piece of the body the camera sees as `stereo` (its point's
+// covariance `stereo_covariance`, vehicle frame): a body with fragments whose footprint each end
+// of the fragment's front segment lies on, within `gate` (the association gate's d^2 from the
+// end to the footprint's nearest point, under the stereo point's covariance, the fragment's and
+// the points' definition sigma). Pure.
+bool IsFragmentOf(const LidarObject& fragment, const stereo::StereoPoint& stereo,
+                  const Eigen::Matrix2d& stereo_covariance, const AssociationGate& gate);
 
 // The camera's class as a pmf: `reported` with probability `confidence`, the rest evenly
 // over the other classes.

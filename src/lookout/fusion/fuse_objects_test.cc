@@ -144,6 +144,71 @@ TEST(FuseObjectsTest, ObjectsSeenByOneSensorAreKept) {
   EXPECT_EQ(s.id, 1u);
 }
 
+// A stereo body of `object_class`, `length_m` long across the lidar's view (its length along
+// the vehicle's y axis), whose near side's middle is at `front` in the vehicle frame.
+stereo::StereoPoint MakeStereoBody(std::uint32_t id, ObjectClass object_class,
+                                   const Vector2d& front, double length_m, double width_m) {
+  StereoObject o;
+  o.id = id;
+  o.object_class = object_class;
+  o.center_m = kCameraMount.Inverse() * (front + Vector2d(0.5 * width_m, 0.0));
+  o.yaw_rad = 0.5 * kPi;
+  o.length_m = length_m;
+  o.width_m = width_m;
+  o.speed_lateral_mps = 2.5;
+  o.center_covariance = Vector2d(0.09, 0.0025).asDiagonal();
+  o.speed_variance = 0.04;
+  auto result = stereo::ProjectStereoObject(o, kCameraMount, kLidarMount, {});
+  return std::get<stereo::StereoPoint>(result);
+}
+
+// A piece of a body's near side at x = 15, from y0 to y1, seen sharply (2 cm).
+LidarObject SidePiece(std::uint32_t id, double y0, double y1) {
+  LidarObject o = MakeLidar(id, Vector2d(15.0, 0.5 * (y0 + y1)));
+  o.front_start_m = Vector2d(15.0, y0);
+  o.front_end_m = Vector2d(15.0, y1);
+  o.point_covariance = Vector2d(0.0004, 0.0004).asDiagonal();
+  return o;
+}
+
+TEST(FuseObjectsTest, APairedBodysOtherPiecesAreItsFragments) {
+  // A cyclist crossing 15 m ahead, its near side split into two pieces by the gap between its
+  // wheels, and a third object 1.5 m beyond its front wheel.
+  const LidarObjectFrame lidar =
+      Frame({SidePiece(1, -0.9, -0.2), SidePiece(2, 0.2, 0.9), SidePiece(3, 2.4, 2.9)});
+  const std::vector<stereo::StereoPoint> cyclist = {
+      MakeStereoBody(5, ObjectClass::kCyclist, Vector2d(15.0, 0.0), 1.8, 0.6)};
+  const FuseObjectsResult result = FuseObjects(lidar, cyclist, {});
+  EXPECT_EQ(result.pairs, 1u);
+  ASSERT_EQ(result.fragment_lidar_ids.size(), 1u);
+  ASSERT_EQ(result.frame.objects.size(), 2u) << "the pair and the object beyond the wheel";
+  const FusedObject& pair = result.frame.objects[0];
+  ASSERT_TRUE(pair.lidar_id.has_value());
+  EXPECT_EQ(pair.stereo_id, 5u);
+  // The piece the camera did not pair is the fragment.
+  EXPECT_EQ(result.fragment_lidar_ids[0], *pair.lidar_id == 1u ? 2u : 1u);
+  EXPECT_EQ(result.frame.objects[1].lidar_id, 3u);
+  EXPECT_EQ(result.frame.objects[1].sensor_count, 1);
+  EXPECT_EQ(result.lidar.objects.size(), 3u) << "the lidar objects as fused keep every one";
+
+  // A walker is one arc: two walkers side by side stay two, however close.
+  const std::vector<stereo::StereoPoint> walker = {
+      MakeStereoBody(6, ObjectClass::kPedestrian, Vector2d(15.0, -0.55), 0.6, 0.6)};
+  const FuseObjectsResult walkers =
+      FuseObjects(Frame({SidePiece(1, -0.8, -0.3), SidePiece(2, -0.15, 0.25)}), walker, {});
+  EXPECT_TRUE(walkers.fragment_lidar_ids.empty());
+  EXPECT_EQ(walkers.frame.objects.size(), 2u);
+
+  // Without the camera's pair nothing is a fragment: the stereo object pairs no piece (all
+  // 4 m off), and each piece stays an object.
+  const std::vector<stereo::StereoPoint> far = {
+      MakeStereoBody(7, ObjectClass::kCyclist, Vector2d(11.0, 0.0), 1.8, 0.6)};
+  const FuseObjectsResult unpaired = FuseObjects(lidar, far, {});
+  EXPECT_EQ(unpaired.pairs, 0u);
+  EXPECT_TRUE(unpaired.fragment_lidar_ids.empty());
+  EXPECT_EQ(unpaired.frame.objects.size(), 4u);
+}
+
 TEST(FuseObjectsTest, VelocitySourceOption) {
   const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};

@@ -67,6 +67,7 @@ FusedObjectFrame FusionEngine::FuseWith(const LidarObjectFrame& lidar, const Ste
   FuseObjectsResult result = FuseObjects(lidar, stereo_, options_);
   stats_.pairs += static_cast<std::int64_t>(result.pairs);
   stats_.lidar_objects_dropped += static_cast<std::int64_t>(result.dropped_lidar_ids.size());
+  stats_.lidar_fragments += static_cast<std::int64_t>(result.fragment_lidar_ids.size());
   lidar_ = std::move(result.lidar);
   return std::move(result.frame);
 }

@@ -29,6 +29,7 @@ struct FusionStats {
   std::int64_t lidar_stamps_not_increasing = 0;     // a lidar stamp <= the one before
   std::int64_t pairs = 0;                           // objects seen by both sensors
   std::int64_t lidar_objects_dropped = 0;           // unusable lidar objects
+  std::int64_t lidar_fragments = 0;  // lidar objects taken as fragments of a paired body
   stereo::DropCounts stereo_drops;                  // unusable stereo objects, by reason
 };
 
