@@ -273,6 +273,11 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
     d.object_class = c;
     d.sensors = o.sensor_count;
     if (o.stereo_id) {
+      // The camera's velocity (fused with the lidar's where it had one), over the ground.
+      d.velocity_mps = r * o.velocity_mps;
+      d.velocity_covariance = r * o.velocity_covariance * r.transpose();
+    }
+    if (o.stereo_id) {
       if (camera_frames >= 2) d.camera = tracking::CameraEvidence::kSeen;
     } else if (camera_mount && InCameraView(*camera_mount, centre, options) &&
                !CameraObjectNear(frame, o, camera_gate) &&

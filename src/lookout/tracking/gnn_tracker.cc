@@ -88,12 +88,8 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
     const Detection& d = detections[j];
     Track t = BornTrack(options_, d, stamp);
     t.id = next_id_++;
-    t.state.mean = Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0);
-    Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
-    p.topLeftCorner<2, 2>() = d.covariance;
-    const double sv = InitialSpeedSigma(options_, d.object_class, options_.initial_speed_sigma_mps);
-    p.bottomRightCorner<2, 2>() = Eigen::Matrix2d::Identity() * sv * sv;
-    t.state.cov = p;
+    t.state = BirthState(
+        d, InitialSpeedSigma(options_, d.object_class, options_.initial_speed_sigma_mps));
     tracks_.push_back(t);
   }
   last_stamp_ = stamp;

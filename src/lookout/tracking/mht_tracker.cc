@@ -284,12 +284,8 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
       auto node = std::make_shared<Node>();
       node->tree = next_tree_++;
       node->track = BornTrack(options_.management, d, stamp);
-      const double sv =
-          InitialSpeedSigma(options_.management, d.object_class, options_.initial_speed_sigma_mps);
-      Gaussian prior{Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0),
-                     Eigen::Matrix4d::Zero()};
-      prior.cov.topLeftCorner<2, 2>() = d.covariance;
-      prior.cov.bottomRightCorner<2, 2>() = Eigen::Matrix2d::Identity() * sv * sv;
+      const Gaussian prior = BirthState(d, InitialSpeedSigma(options_.management, d.object_class,
+                                                             options_.initial_speed_sigma_mps));
       const double sa = options_.initial_acceleration_sigma_mps2;
       node->imm = InitImm(imm_, prior, {kX, kY, kVx, kVy}, sa * sa, stamp);
       node->track.state = Combine(imm_, node->imm);

@@ -357,6 +357,22 @@ TEST(MhtTrackerTest, AWalkersNarrowVelocityPriorSettlesSooner) {
   }
 }
 
+// Both trackers start a camera object's track with the camera's velocity (BirthState): a car
+// crossing at 10 m/s, seen by both sensors, is output at its first scan moving at 10 m/s.
+TEST(MhtTrackerTest, ATrackBornOfACameraObjectStartsWithItsVelocity) {
+  Detection d = At(Eigen::Vector2d(20.0, -10.0), ObjectClass::kCar, 2);
+  d.velocity_mps = Eigen::Vector2d(0.0, 10.0);
+  d.velocity_covariance = 0.09 * Eigen::Matrix2d::Identity();
+  MhtTracker mht;
+  GnnTracker gnn;
+  mht.Step(0, {d});
+  gnn.Step(0, {d});
+  for (const std::vector<Track>& tracks : {mht.ConfirmedTracks(), gnn.ConfirmedTracks()}) {
+    ASSERT_EQ(tracks.size(), 1u);
+    EXPECT_LT((tracks[0].Velocity() - Eigen::Vector2d(0.0, 10.0)).norm(), 1e-9);
+  }
+}
+
 TEST(MhtTrackerTest, ClassGatingHoldsInEveryHypothesis) {
   MhtTracker tracker;
   for (int k = 0; k < 5; ++k) {
