@@ -95,7 +95,7 @@ void FusionMetricsAccumulator::AddFrame(const fusion::FusedObjectFrame& fused,
   };
   std::vector<Candidate> candidates;
   for (const fusion::FusedObject& f : fused.objects) {
-    if (f.sensor_count != 2 || !f.lidar_id || !f.stereo_id) continue;
+    if (f.sensor_count != 2 || !f.lidar_id || !f.stereo_id || f.footprint_pair) continue;
     const LidarObject* l = nullptr;
     for (const LidarObject& o : lidar.objects) {
       if (o.id == *f.lidar_id) l = &o;

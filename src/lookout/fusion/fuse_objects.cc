@@ -116,6 +116,29 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     stereo_taken[pair.stereo] = true;
   }
 
+  // Footprint pairs: an unpaired camera body and the nearest unpaired lidar object on its
+  // footprint, in the camera's order (fuse_objects.h).
+  std::vector<bool> footprint_pair(lidar_objects.size(), false);
+  for (std::size_t i = 0; i < stereo.size(); ++i) {
+    if (stereo_taken[i]) continue;
+    std::optional<std::size_t> nearest;
+    double nearest_m = 0.0;
+    for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
+      if (stereo_of_lidar[j]) continue;
+      if (!IsFragmentOf(*lidar_objects[j], stereo[i], stereo_points[i].covariance, gate)) continue;
+      const double d = (lidar_objects[j]->point_m - stereo_points[i].point_m).norm();
+      if (!nearest || d < nearest_m) {
+        nearest = j;
+        nearest_m = d;
+      }
+    }
+    if (!nearest) continue;
+    stereo_of_lidar[*nearest] = i;
+    footprint_pair[*nearest] = true;
+    stereo_taken[i] = true;
+    ++result.footprint_pairs;
+  }
+
   // Fragments: an unpaired lidar object on the footprint of a stereo object that paired
   // another (fuse_objects.h).
   std::vector<bool> fragment(lidar_objects.size(), false);
@@ -155,11 +178,20 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     }
     if (const auto i = paired) {
       const stereo::StereoPoint& s = stereo[*i];
-      const Gaussian2 position = FuseGaussians(
-          Gaussian2{as_fused.point_m, as_fused.point_covariance},
-          Gaussian2{stereo_points[*i].point_m, stereo_points[*i].covariance});
-      f.point_m = position.mean;
-      f.point_covariance = position.covariance;
+      if (footprint_pair[j]) {
+        // Two sides' middles are not one point: the camera's is kept, with its front.
+        f.point_m = stereo_points[*i].point_m;
+        f.point_covariance = stereo_points[*i].covariance;
+        f.front_start_m = s.front.start_m;
+        f.front_end_m = s.front.end_m;
+        f.footprint_pair = true;
+      } else {
+        const Gaussian2 position =
+            FuseGaussians(Gaussian2{as_fused.point_m, as_fused.point_covariance},
+                          Gaussian2{stereo_points[*i].point_m, stereo_points[*i].covariance});
+        f.point_m = position.mean;
+        f.point_covariance = position.covariance;
+      }
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);
       f.velocity_mps = velocity.mean;
       f.velocity_covariance = velocity.covariance;

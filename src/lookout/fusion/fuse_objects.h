@@ -27,7 +27,8 @@ namespace lookout::fusion {
 
 struct FuseObjectsResult {
   FusedObjectFrame frame;
-  std::size_t pairs = 0;  // objects seen by both sensors
+  std::size_t pairs = 0;            // objects seen by both sensors, their points fused
+  std::size_t footprint_pairs = 0;  // ... on different sides (the camera's point kept)
   // Lidar objects left out for a non-finite point or velocity or a covariance that is not
   // positive definite (counted; the lidar stage should never make one).
   std::vector<std::uint32_t> dropped_lidar_ids;
@@ -50,6 +51,15 @@ struct FuseObjectsResult {
 // a stereo object that paired another lidar object (IsFragmentOf) is left out of the fused
 // list and counted. Only the camera's cyclists, cars and trucks: a walker is one arc, and two
 // walkers side by side would otherwise be one.
+//
+// By the same test, footprint pairs: a camera body the point gate paired with nothing, and the
+// nearest unpaired lidar object on its footprint. The two points are the middles of two sides
+// (near-miss: the lidar sees a car's nose past a corner block, the camera its box and the side
+// the ray from its centre leaves through, 2.4 m apart, so the point gate refuses them): both
+// sensors saw the object, so it is one fused object (sensor_count 2, both ids, the camera's
+// class, dynamic if either says so), but its point, covariance and front are the camera's, not
+// a fusion of two different points (FusedObject::footprint_pair; the fusion metrics leave it
+// out). Its other pieces are then its fragments.
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
                               const FusionOptions& options);

@@ -209,6 +209,40 @@ TEST(FuseObjectsTest, APairedBodysOtherPiecesAreItsFragments) {
   EXPECT_EQ(unpaired.frame.objects.size(), 4u);
 }
 
+TEST(FuseObjectsTest, ACarSeenOnTwoSidesIsOneObjectWithTheCamerasPoint) {
+  // The camera sees a car crossing 15 m ahead, 4.5 m long, its near side at x = 15; the lidar
+  // sees only its nose, the front face from x = 15.0 to 16.8 at y = 2.25, past a corner block.
+  // The two middles are 2.4 m apart, and the point gate refuses them.
+  LidarObject nose = MakeLidar(4, Vector2d(15.9, 2.25));
+  nose.front_start_m = Vector2d(15.0, 2.25);
+  nose.front_end_m = Vector2d(16.8, 2.25);
+  nose.point_covariance = Vector2d(0.0004, 0.0004).asDiagonal();
+  const std::vector<stereo::StereoPoint> car = {
+      MakeStereoBody(8, ObjectClass::kCar, Vector2d(15.0, 0.0), 4.5, 1.8)};
+  const FuseObjectsResult result = FuseObjects(Frame({nose}), car, {});
+  EXPECT_EQ(result.pairs, 0u);
+  EXPECT_EQ(result.footprint_pairs, 1u);
+  ASSERT_EQ(result.frame.objects.size(), 1u);
+  const FusedObject& f = result.frame.objects[0];
+  EXPECT_EQ(f.sensor_count, 2);
+  EXPECT_EQ(f.lidar_id, 4u);
+  EXPECT_EQ(f.stereo_id, 8u);
+  EXPECT_TRUE(f.footprint_pair);
+  const stereo::CartesianPoint camera = stereo::ToCartesian(car[0].polar, kLidarMount);
+  EXPECT_LT((f.point_m - camera.point_m).norm(), 1e-9) << "two sides' middles are not fused";
+  EXPECT_EQ(f.front_start_m, car[0].front.start_m);
+  EXPECT_GT(f.class_pmf[static_cast<std::size_t>(ObjectClass::kCar)], 0.5);
+
+  // A lidar object 3 m beyond the car's front pairs with nothing.
+  LidarObject beyond = nose;
+  beyond.front_start_m.y() += 3.0;
+  beyond.front_end_m.y() += 3.0;
+  beyond.point_m.y() += 3.0;
+  const FuseObjectsResult apart = FuseObjects(Frame({beyond}), car, {});
+  EXPECT_EQ(apart.footprint_pairs, 0u);
+  EXPECT_EQ(apart.frame.objects.size(), 2u);
+}
+
 TEST(FuseObjectsTest, VelocitySourceOption) {
   const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};

@@ -31,6 +31,8 @@ struct FusedObject {
   std::array<double, kAllObjectClasses.size()> class_pmf{};
   bool dynamic = false;
   int sensor_count = 0;                    // 1 or 2
+  // Both sensors saw it on different sides: the point is the camera's (fuse_objects.h).
+  bool footprint_pair = false;
   std::optional<std::uint32_t> lidar_id;   // LidarObject::id in the lidar frame
   std::optional<std::uint32_t> stereo_id;  // StereoObject::id, the camera's track id
 };
