@@ -6,7 +6,9 @@
 //
 // The scene: N objects spread over the camera's field (70 degrees, 3 to 35 m), each seen by
 // the camera and, 0.1 m from the camera's point, by the lidar, so that every stereo object has its
-// partner and its neighbours in the gate; fixed seed.
+// partner and its neighbours in the gate; fixed seed. BM_FuseObjectsWithPieces adds a second
+// lidar object 1 m from each partner that no stereo object pairs: the fragment test (fusion.md,
+// "A paired body's fragments") then runs for N unpaired lidar objects against N stereo objects.
 
 #include <benchmark/benchmark.h>
 
@@ -35,7 +37,7 @@ struct Scene {
   StereoFrame stereo;
 };
 
-Scene MakeScene(int count) {
+Scene MakeScene(int count, bool pieces = false) {
   Rng rng(2026);
   Scene scene;
   scene.lidar.stamp = 80'000'000;
@@ -71,6 +73,14 @@ Scene MakeScene(int count) {
     l.class_pmf[static_cast<std::size_t>(ObjectClass::kCar)] = 1.0;
     l.dynamic = true;
     scene.lidar.objects.push_back(l);
+    if (pieces) {
+      LidarObject piece = l;
+      piece.id = static_cast<std::uint32_t>(count + i);
+      piece.point_m += Vector2d(0.0, 1.0);
+      piece.front_start_m = piece.point_m - Vector2d(0.0, 0.3);
+      piece.front_end_m = piece.point_m + Vector2d(0.0, 0.3);
+      scene.lidar.objects.push_back(piece);
+    }
   }
   return scene;
 }
@@ -103,6 +113,21 @@ void BM_FuseObjects(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_FuseObjects)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
+
+void BM_FuseObjectsWithPieces(benchmark::State& state) {
+  const Scene scene = MakeScene(static_cast<int>(state.range(0)), true);
+  const FusionOptions options;
+  const stereo::ProjectedStereoFrame projected =
+      stereo::ProjectStereoFrame(scene.stereo, kLidarMount, options.stereo);
+  std::size_t fragments = 0;
+  for (auto _ : state) {
+    const FuseObjectsResult result = FuseObjects(scene.lidar, projected.objects, options);
+    fragments = result.fragment_lidar_ids.size();
+    benchmark::DoNotOptimize(result.frame.objects.data());
+  }
+  state.counters["fragments"] = static_cast<double>(fragments);
+}
+BENCHMARK(BM_FuseObjectsWithPieces)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace lookout::fusion
