@@ -1,6 +1,7 @@
 #include "lookout/fusion/fuse_objects.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <optional>
 
 #include "lookout/core/chi_square.h"
@@ -44,7 +45,32 @@ Vector2d NearestPointOnBox(const stereo::OrientedBox& box, const Vector2d& p) {
   return box.center_m + to_world * local.cwiseMax(-half).cwiseMin(half);
 }
 
+double PointToSegment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
+  const Vector2d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
 }  // namespace
+
+double FrontSegmentDistance(const LidarObject& a, const LidarObject& b) {
+  const Vector2d& a0 = a.front_start_m;
+  const Vector2d& a1 = a.front_end_m;
+  const Vector2d& b0 = b.front_start_m;
+  const Vector2d& b1 = b.front_end_m;
+  const auto cross = [](const Vector2d& u, const Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  // Crossing: each segment's ends on opposite sides of the other's line.
+  if (cross(a1 - a0, b0 - a0) * cross(a1 - a0, b1 - a0) < 0.0 &&
+      cross(b1 - b0, a0 - b0) * cross(b1 - b0, a1 - b0) < 0.0) {
+    return 0.0;
+  }
+  // Otherwise they are nearest at an end of one of them.
+  return std::min({PointToSegment(a0, b0, b1), PointToSegment(a1, b0, b1),
+                   PointToSegment(b0, a0, a1), PointToSegment(b1, a0, a1)});
+}
 
 bool HasFragments(ObjectClass c) {
   return c == ObjectClass::kCyclist || c == ObjectClass::kCar || c == ObjectClass::kTruck;
@@ -150,6 +176,26 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     }
   }
 
+  // Pieces: an unpaired dynamic lidar object beside a longer or camera-paired one
+  // (fuse_objects.h), judged against the objects as they stand after the camera's rules.
+  std::vector<bool> piece(lidar_objects.size(), false);
+  if (options.piece_gap_m > 0.0) {
+    const auto length = [](const LidarObject& o) {
+      return (o.front_end_m - o.front_start_m).norm();
+    };
+    for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
+      const LidarObject& a = *lidar_objects[j];
+      if (stereo_of_lidar[j] || fragment[j] || !a.dynamic) continue;
+      for (std::size_t k = 0; k < lidar_objects.size() && !piece[j]; ++k) {
+        const LidarObject& b = *lidar_objects[k];
+        if (k == j || fragment[k] || !b.dynamic) continue;
+        const bool b_wins =
+            stereo_of_lidar[k] || length(b) > length(a) || (length(b) == length(a) && k < j);
+        piece[j] = b_wins && FrontSegmentDistance(a, b) <= options.piece_gap_m;
+      }
+    }
+  }
+
   result.lidar.stamp = lidar.stamp;
   result.lidar.mount = lidar.mount;
   result.lidar.ego_pose = lidar.ego_pose;
@@ -169,6 +215,10 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     LidarObject& as_fused = result.lidar.objects.emplace_back(l);
     if (fragment[j]) {
       result.fragment_lidar_ids.push_back(l.id);
+      continue;
+    }
+    if (piece[j]) {
+      result.piece_lidar_ids.push_back(l.id);
       continue;
     }
     if (paired) {

@@ -35,6 +35,8 @@ struct FuseObjectsResult {
   // Lidar objects left out as fragments of a body the camera paired with another of them
   // (IsFragmentOf), in the lidar frame's order.
   std::vector<std::uint32_t> fragment_lidar_ids;
+  // Unpaired lidar objects left out as pieces of a body beside them (FusionOptions::piece_gap_m).
+  std::vector<std::uint32_t> piece_lidar_ids;
   // The lidar objects as fused: the usable ones, in their order, each with the point
   // covariance fusion gave it (LidarPointCovariance: with the camera's class where paired).
   LidarObjectFrame lidar;
@@ -60,9 +62,21 @@ struct FuseObjectsResult {
 // class, dynamic if either says so), but its point, covariance and front are the camera's, not
 // a fusion of two different points (FusedObject::footprint_pair; the fusion metrics leave it
 // out). Its other pieces are then its fragments.
+//
+// Without the camera, pieces: the segmentation also splits bodies no camera pairs (fig8's
+// cyclist out of the camera's view, as its side and its front face 0.46 m apart; the crowd's
+// walkers, whose arcs break), and each piece would be a lidar-only object with a track of its
+// own. An unpaired dynamic lidar object whose front segment comes within
+// FusionOptions::piece_gap_m of another dynamic lidar object's that is longer (ties: the
+// earlier) or that the camera paired is a piece of that body: left out and counted. Static
+// objects are not judged (the tracking stage takes no static lidar-only object), and a paired
+// object is never a piece.
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
                               const FusionOptions& options);
+
+// The distance between two lidar objects' front segments (0 where they cross). Pure.
+double FrontSegmentDistance(const LidarObject& a, const LidarObject& b);
 
 // Whether the stereo class is a body long enough to break into several lidar objects.
 bool HasFragments(ObjectClass c);

@@ -191,11 +191,15 @@ TEST(FuseObjectsTest, APairedBodysOtherPiecesAreItsFragments) {
   EXPECT_EQ(result.frame.objects[1].sensor_count, 1);
   EXPECT_EQ(result.lidar.objects.size(), 3u) << "the lidar objects as fused keep every one";
 
+  // The camera's rule alone from here on (the pieces' rule, next test, would join what lies
+  // within 0.5 m whatever its class).
+  FusionOptions fragments_only;
+  fragments_only.piece_gap_m = 0.0;
   // A walker is one arc: two walkers side by side stay two, however close.
   const std::vector<stereo::StereoPoint> walker = {
       MakeStereoBody(6, ObjectClass::kPedestrian, Vector2d(15.0, -0.55), 0.6, 0.6)};
-  const FuseObjectsResult walkers =
-      FuseObjects(Frame({SidePiece(1, -0.8, -0.3), SidePiece(2, -0.15, 0.25)}), walker, {});
+  const FuseObjectsResult walkers = FuseObjects(
+      Frame({SidePiece(1, -0.8, -0.3), SidePiece(2, -0.15, 0.25)}), walker, fragments_only);
   EXPECT_TRUE(walkers.fragment_lidar_ids.empty());
   EXPECT_EQ(walkers.frame.objects.size(), 2u);
 
@@ -203,7 +207,7 @@ TEST(FuseObjectsTest, APairedBodysOtherPiecesAreItsFragments) {
   // 4 m off), and each piece stays an object.
   const std::vector<stereo::StereoPoint> far = {
       MakeStereoBody(7, ObjectClass::kCyclist, Vector2d(11.0, 0.0), 1.8, 0.6)};
-  const FuseObjectsResult unpaired = FuseObjects(lidar, far, {});
+  const FuseObjectsResult unpaired = FuseObjects(lidar, far, fragments_only);
   EXPECT_EQ(unpaired.pairs, 0u);
   EXPECT_TRUE(unpaired.fragment_lidar_ids.empty());
   EXPECT_EQ(unpaired.frame.objects.size(), 4u);
@@ -241,6 +245,54 @@ TEST(FuseObjectsTest, ACarSeenOnTwoSidesIsOneObjectWithTheCamerasPoint) {
   const FuseObjectsResult apart = FuseObjects(Frame({beyond}), car, {});
   EXPECT_EQ(apart.footprint_pairs, 0u);
   EXPECT_EQ(apart.frame.objects.size(), 2u);
+}
+
+// A dynamic lidar object whose front segment runs from `a` to `b`.
+LidarObject Segment(std::uint32_t id, const Vector2d& a, const Vector2d& b) {
+  LidarObject o = MakeLidar(id, 0.5 * (a + b));
+  o.front_start_m = a;
+  o.front_end_m = b;
+  return o;
+}
+
+TEST(FuseObjectsTest, FrontSegmentDistance) {
+  EXPECT_NEAR(FrontSegmentDistance(Segment(1, {0, 0}, {0, 2}), Segment(2, {0.5, 3}, {2, 3})),
+              std::hypot(0.5, 1.0), 1e-12);  // end to end
+  EXPECT_NEAR(FrontSegmentDistance(Segment(1, {0, 0}, {0, 2}), Segment(2, {0.4, 1}, {2, 1})), 0.4,
+              1e-12);  // an end to the other's middle
+  EXPECT_EQ(FrontSegmentDistance(Segment(1, {0, 0}, {2, 2}), Segment(2, {0, 2}, {2, 0})), 0.0);
+}
+
+TEST(FuseObjectsTest, WithoutTheCameraASplitBodysShorterPieceIsLeftOut) {
+  // fig8's cyclist out of the camera's view at 3.20 s: its west side (1.75 m) and, 0.46 m from
+  // its end, a piece of its front face; a walker 1.5 m further on is another body.
+  const LidarObject side = Segment(1, {15.0, 1.75}, {15.0, 0.0});
+  const LidarObject face = Segment(2, {15.46, 0.0}, {15.55, 0.0});
+  const LidarObject walker = Segment(3, {15.0, -1.5}, {15.0, -1.9});
+  FuseObjectsResult result = FuseObjects(Frame({side, face, walker}), {}, {});
+  ASSERT_EQ(result.piece_lidar_ids.size(), 1u);
+  EXPECT_EQ(result.piece_lidar_ids[0], 2u);
+  ASSERT_EQ(result.frame.objects.size(), 2u);
+  EXPECT_EQ(result.frame.objects[0].lidar_id, 1u);
+  EXPECT_EQ(result.frame.objects[1].lidar_id, 3u);
+
+  // Off, or a static piece (the tracking stage takes no static lidar-only object): all kept.
+  FusionOptions off;
+  off.piece_gap_m = 0.0;
+  EXPECT_EQ(FuseObjects(Frame({side, face, walker}), {}, off).frame.objects.size(), 3u);
+  LidarObject still = face;
+  still.dynamic = false;
+  EXPECT_TRUE(FuseObjects(Frame({side, still, walker}), {}, {}).piece_lidar_ids.empty());
+
+  // A piece the camera paired is never left out; the longer unpaired one beside it is.
+  const std::vector<stereo::StereoPoint> walker_seen = {
+      MakeStereoBody(9, ObjectClass::kPedestrian, Vector2d(15.0, 0.35), 0.6, 0.6)};
+  const LidarObject arc = Segment(4, {15.0, 0.5}, {15.0, 0.2});
+  const LidarObject beside = Segment(5, {15.0, 0.0}, {15.0, -0.9});
+  result = FuseObjects(Frame({arc, beside}), walker_seen, {});
+  EXPECT_EQ(result.pairs, 1u);
+  ASSERT_EQ(result.piece_lidar_ids.size(), 1u);
+  EXPECT_EQ(result.piece_lidar_ids[0], 5u);
 }
 
 TEST(FuseObjectsTest, VelocitySourceOption) {

@@ -68,6 +68,9 @@ FusedObjectFrame FusionEngine::FuseWith(const LidarObjectFrame& lidar, const Ste
   stats_.pairs += static_cast<std::int64_t>(result.pairs);
   stats_.lidar_objects_dropped += static_cast<std::int64_t>(result.dropped_lidar_ids.size());
   stats_.lidar_fragments += static_cast<std::int64_t>(result.fragment_lidar_ids.size());
+  stats_.lidar_pieces += static_cast<std::int64_t>(result.piece_lidar_ids.size());
+  left_out_ = std::move(result.fragment_lidar_ids);
+  left_out_.insert(left_out_.end(), result.piece_lidar_ids.begin(), result.piece_lidar_ids.end());
   lidar_ = std::move(result.lidar);
   return std::move(result.frame);
 }

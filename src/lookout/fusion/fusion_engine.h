@@ -30,6 +30,7 @@ struct FusionStats {
   std::int64_t pairs = 0;                           // objects seen by both sensors
   std::int64_t lidar_objects_dropped = 0;           // unusable lidar objects
   std::int64_t lidar_fragments = 0;  // lidar objects taken as fragments of a paired body
+  std::int64_t lidar_pieces = 0;     // ... as pieces of a body beside them
   stereo::DropCounts stereo_drops;                  // unusable stereo objects, by reason
 };
 
@@ -55,6 +56,9 @@ class FusionEngine {
   // Of the last Fuse call: the lidar objects as fused, each with the point covariance fusion
   // gave it (FuseObjectsResult::lidar), for metrics of the lidar's own consistency.
   const LidarObjectFrame& lidar_as_fused() const { return lidar_; }
+  // Of the last Fuse call: the lidar objects left out as fragments or pieces of a body
+  // (fuse_objects.h), fragments first.
+  const std::vector<std::uint32_t>& last_left_out_lidar_ids() const { return left_out_; }
 
  private:
   FusedObjectFrame FuseWith(const LidarObjectFrame& lidar, const StereoFrame& stereo,
@@ -67,6 +71,7 @@ class FusionEngine {
   std::vector<stereo::StereoPoint> stereo_;
   std::vector<stereo::Drop> drops_;
   LidarObjectFrame lidar_;
+  std::vector<std::uint32_t> left_out_;
 };
 
 }  // namespace lookout::fusion

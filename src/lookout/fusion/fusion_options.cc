@@ -1,5 +1,6 @@
 #include "lookout/fusion/fusion_options.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +19,8 @@ void FusionOptions::Validate() const {
   Require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability",
           "must be in (0, 1)");
   Require(point_definition_sigma_m >= 0.0, "point_definition_sigma_m", "must be >= 0");
+  Require(piece_gap_m >= 0.0 && std::isfinite(piece_gap_m), "piece_gap_m",
+          "must be finite and >= 0");
   Require(max_stereo_age_s >= 0.0, "max_stereo_age_s", "must be >= 0");
   Require(acceleration_sigma_mps2 >= 0.0, "acceleration_sigma_mps2", "must be >= 0");
   Require(stereo_class_confidence > 0.0 && stereo_class_confidence <= 1.0,
