@@ -272,6 +272,8 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
                                                         Eigen::Matrix2d::Identity();
     d.object_class = c;
     d.sensors = o.sensor_count;
+    d.seen_point_m = frame.ego_pose * o.point_m;
+    d.seen_point_covariance = r * o.point_covariance * r.transpose();
     if (o.stereo_id) {
       // The camera's velocity (fused with the lidar's where it had one), over the ground.
       d.velocity_mps = r * o.velocity_mps;

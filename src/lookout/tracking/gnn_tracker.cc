@@ -77,6 +77,10 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
     used[static_cast<std::size_t>(j)] = true;
     t.state = UpdateState(t.state, d.position_m, d.covariance).posterior;
     t = AfterDetection(options_, std::move(t), d, stamp);
+    if (t.updates == 3) {
+      t.state = WithSeenVelocity(t.state, t.early_seen_points,
+                                 options_.seen_velocity_agreement_probability);
+    }
   }
   // Delete tracks missed too often (in order, so ids stay sorted).
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),

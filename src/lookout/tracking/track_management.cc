@@ -38,6 +38,8 @@ void TrackManagementOptions::Validate(const std::string& source) const {
           "min_existence_probability", "must be in [0, 0.5)");
   require(std::isfinite(existence_log_odds_limit) && existence_log_odds_limit > 0.0,
           "existence_log_odds_limit", "must be > 0");
+  require(seen_velocity_agreement_probability >= 0.0 && seen_velocity_agreement_probability < 1.0,
+          "seen_velocity_agreement_probability", "must be in [0, 1)");
   require(std::isfinite(initial_speed_sigma_pedestrian_mps) &&
               initial_speed_sigma_pedestrian_mps > 0.0,
           "initial_speed_sigma_pedestrian_mps", "must be > 0");
@@ -82,6 +84,8 @@ Track BornTrack(const TrackManagementOptions& o, const Detection& d, TimeNs stam
   t.stamp = stamp;
   t.last_detected = stamp;
   t.updates = 1;
+  if (d.seen_point_m)
+    t.early_seen_points.push_back({stamp, *d.seen_point_m, d.seen_point_covariance});
   t.existence_log_odds = ExistenceAfter(o, 0.0, d.camera);
   if (t.updates >= UpdatesToConfirm(o, d)) t.status = TrackStatus::kConfirmed;
   return t;
@@ -89,6 +93,11 @@ Track BornTrack(const TrackManagementOptions& o, const Detection& d, TimeNs stam
 
 Track AfterDetection(const TrackManagementOptions& o, Track t, const Detection& d, TimeNs stamp) {
   ++t.updates;
+  if (t.updates > 3) t.early_seen_points.clear();
+  if (t.updates <= 3 && d.seen_point_m &&
+      t.early_seen_points.size() + 1 == static_cast<std::size_t>(t.updates)) {
+    t.early_seen_points.push_back({stamp, *d.seen_point_m, d.seen_point_covariance});
+  }
   t.misses = 0;
   t.stamp = stamp;
   t.last_detected = stamp;

@@ -74,6 +74,9 @@ struct TrackManagementOptions {
   // of speed (docs/risk.md, pushchair-group). 1.5 m/s: a Rayleigh speed prior whose mode is a
   // walking pace, a child running at 3 m/s 2 sigma out.
   double initial_speed_sigma_pedestrian_mps = 1.5;
+  // A young track's velocity from its first three seen points (ThreePointVelocity, tracker.h)
+  // where their two steps agree at this probability; 0: off.
+  double seen_velocity_agreement_probability = 0.99;
 
   // Throws lookout::InputError naming the first field out of range.
   void Validate(const std::string& source = "track management options") const;

@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+#include "lookout/core/chi_square.h"
+
 namespace lookout::tracking {
 
 bool DetectionUsable(const Detection& d) {
@@ -29,6 +31,42 @@ Gaussian BirthState(const Detection& d, double speed_sigma_mps) {
   }
   g.cov.bottomRightCorner<2, 2>() = velocity_cov;
   return g;
+}
+
+std::optional<Gaussian> ThreePointVelocity(const std::vector<SeenPoint>& p,
+                                           double agreement_probability) {
+  if (p.size() < 3) return std::nullopt;
+  const double dt1 = ToSeconds(p[1].stamp - p[0].stamp);
+  const double dt2 = ToSeconds(p[2].stamp - p[1].stamp);
+  if (!(dt1 > 0.0) || !(dt2 > 0.0)) return std::nullopt;
+  const Eigen::Vector2d v12 = (p[1].point_m - p[0].point_m) / dt1;
+  const Eigen::Vector2d v23 = (p[2].point_m - p[1].point_m) / dt2;
+  // v12 - v23 = -s1 / dt1 + s2 (1 / dt1 + 1 / dt2) - s3 / dt2.
+  const double middle = 1.0 / dt1 + 1.0 / dt2;
+  const Eigen::Matrix2d s = p[0].covariance / (dt1 * dt1) + p[1].covariance * middle * middle +
+                            p[2].covariance / (dt2 * dt2);
+  const Eigen::Vector2d d = v12 - v23;
+  if (!d.allFinite() || !s.allFinite() || !(s.determinant() > 0.0)) return std::nullopt;
+  if (d.dot(s.inverse() * d) > ChiSquareQuantile(agreement_probability, 2.0)) return std::nullopt;
+  const double t = dt1 + dt2;
+  return Gaussian{(p[2].point_m - p[0].point_m) / t, (p[0].covariance + p[2].covariance) / (t * t)};
+}
+
+Gaussian WithSurerVelocity(const Gaussian& state, const Gaussian& velocity) {
+  if (!(velocity.cov.trace() < state.cov.block<2, 2>(2, 2).trace())) return state;
+  Gaussian out = state;
+  out.mean.segment<2>(2) = velocity.mean;
+  out.cov.block<2, 2>(2, 2) = velocity.cov;
+  out.cov.block<2, 2>(0, 2).setZero();
+  out.cov.block<2, 2>(2, 0).setZero();
+  return out;
+}
+
+Gaussian WithSeenVelocity(const Gaussian& state, const std::vector<SeenPoint>& early_seen_points,
+                          double agreement_probability) {
+  if (!(agreement_probability > 0.0) || early_seen_points.size() != 3) return state;
+  const std::optional<Gaussian> v = ThreePointVelocity(early_seen_points, agreement_probability);
+  return v ? WithSurerVelocity(state, *v) : state;
 }
 
 bool ClassesCompatible(ObjectClass track, ObjectClass detection) {

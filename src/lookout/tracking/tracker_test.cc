@@ -42,5 +42,51 @@ TEST(BirthState, TakesTheDetectionsVelocityWhereItIsSurerThanThePrior) {
   EXPECT_EQ(BirthState(d, 5.0).cov.bottomRightCorner(2, 2), 25.0 * Eigen::Matrix2d::Identity());
 }
 
+SeenPoint Seen(double t_s, double x, double y, double sigma_m = 0.03) {
+  return {static_cast<TimeNs>(t_s * 1e9), Eigen::Vector2d(x, y),
+          Eigen::Matrix2d::Identity() * sigma_m * sigma_m};
+}
+
+TEST(ThreePointVelocity, TheSeenPointsStepsGiveTheVelocityWhereTheyAgree) {
+  // A car's front face crossing at 8 m/s, seen every 0.08 s to 3 cm.
+  const std::vector<SeenPoint> car = {Seen(4.24, 21.7, -24.35), Seen(4.32, 21.7, -23.71),
+                                      Seen(4.40, 21.7, -23.07)};
+  const std::optional<Gaussian> v = ThreePointVelocity(car, 0.99);
+  ASSERT_TRUE(v.has_value());
+  EXPECT_LT((v->mean - Eigen::Vector2d(0.0, 8.0)).norm(), 1e-9);
+  // (C1 + C3) / (t3 - t1)^2: 2 (0.03)^2 / 0.16^2.
+  EXPECT_NEAR(v->cov(1, 1), 2.0 * 0.0009 / (0.16 * 0.16), 1e-12);
+  EXPECT_NEAR(v->cov(0, 1), 0.0, 1e-12);
+
+  // The third point on another piece of the body, 1.5 m along it: the steps disagree.
+  std::vector<SeenPoint> pieces = car;
+  pieces[2].point_m.x() += 1.5;
+  EXPECT_FALSE(ThreePointVelocity(pieces, 0.99).has_value());
+  // ... unless the points say they could be anywhere there (a 1 m sigma across).
+  for (SeenPoint& p : pieces) p.covariance(0, 0) = 1.0;
+  EXPECT_TRUE(ThreePointVelocity(pieces, 0.99).has_value());
+
+  // Two points, or stamps not increasing: nothing.
+  EXPECT_FALSE(ThreePointVelocity({car[0], car[1]}, 0.99).has_value());
+  EXPECT_FALSE(ThreePointVelocity({car[0], car[2], car[1]}, 0.99).has_value());
+}
+
+TEST(ThreePointVelocity, ReplacesTheFiltersVelocityOnlyWhereSurer) {
+  Gaussian state{Eigen::Vector4d(1.0, 2.0, 0.5, 3.0), Eigen::Matrix4d::Identity() * 4.0};
+  state.cov(0, 2) = state.cov(2, 0) = 1.0;
+  const std::vector<SeenPoint> car = {Seen(0.0, 0.0, 0.0), Seen(0.1, 0.0, 0.8),
+                                      Seen(0.2, 0.0, 1.6)};
+  const Gaussian seen = WithSeenVelocity(state, car, 0.99);
+  EXPECT_EQ(seen.mean.head(2), state.mean.head(2));
+  EXPECT_LT((seen.mean.tail(2) - Eigen::Vector2d(0.0, 8.0)).norm(), 1e-9);
+  EXPECT_EQ(seen.cov(0, 2), 0.0) << "the velocity is the points', not the filter's";
+  EXPECT_EQ(seen.cov.topLeftCorner(2, 2), state.cov.topLeftCorner(2, 2));
+  // Off, or the filter surer already: unchanged.
+  EXPECT_EQ(WithSeenVelocity(state, car, 0.0).mean, state.mean);
+  Gaussian sure = state;
+  sure.cov.bottomRightCorner(2, 2) = Eigen::Matrix2d::Identity() * 1e-4;
+  EXPECT_EQ(WithSeenVelocity(sure, car, 0.99).mean, sure.mean);
+}
+
 }  // namespace
 }  // namespace lookout::tracking
