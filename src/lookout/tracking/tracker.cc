@@ -33,7 +33,7 @@ Gaussian BirthState(const Detection& d, double speed_sigma_mps) {
   return g;
 }
 
-std::optional<Gaussian> ThreePointVelocity(const std::vector<SeenPoint>& p,
+std::optional<Gaussian> ThreePointVelocity(std::span<const SeenPoint> p,
                                            double agreement_probability) {
   if (p.size() < 3) return std::nullopt;
   const double dt1 = ToSeconds(p[1].stamp - p[0].stamp);
@@ -62,7 +62,7 @@ Gaussian WithSurerVelocity(const Gaussian& state, const Gaussian& velocity) {
   return out;
 }
 
-Gaussian WithSeenVelocity(const Gaussian& state, const std::vector<SeenPoint>& early_seen_points,
+Gaussian WithSeenVelocity(const Gaussian& state, std::span<const SeenPoint> early_seen_points,
                           double agreement_probability) {
   if (!(agreement_probability > 0.0) || early_seen_points.size() != 3) return state;
   const std::optional<Gaussian> v = ThreePointVelocity(early_seen_points, agreement_probability);

@@ -6,9 +6,11 @@
 // put the MHT beside the baseline on the same input.
 
 #include <Eigen/Core>
+#include <boost/container/static_vector.hpp>
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "lookout/core/object_class.h"
@@ -72,13 +74,13 @@ struct SeenPoint {
 // differences measure the velocity of the part the sensors saw, the depth cancelled. Why three
 // and the agreement: a track whose first detections are two different pieces of a body (or two
 // bodies) reads a confident 12-24 m/s from two points; the two steps of such a track disagree.
-std::optional<Gaussian> ThreePointVelocity(const std::vector<SeenPoint>& points,
+std::optional<Gaussian> ThreePointVelocity(std::span<const SeenPoint> points,
                                            double agreement_probability);
 
 // What a track's third detection makes of its velocity: `state` with the seen points' velocity
 // (ThreePointVelocity) where the track has its three seen points and it is surer
 // (WithSurerVelocity); `state` otherwise. agreement_probability 0: `state`.
-Gaussian WithSeenVelocity(const Gaussian& state, const std::vector<SeenPoint>& early_seen_points,
+Gaussian WithSeenVelocity(const Gaussian& state, std::span<const SeenPoint> early_seen_points,
                           double agreement_probability);
 
 // `state` (x, y, vx, vy) with its velocity replaced by `velocity` where that is surer (smaller
@@ -108,8 +110,9 @@ struct Track {
   // source, from the camera's evidence on its detections (track_management.h); 0 without any.
   double existence_log_odds = 0.0;
   // The seen points of its first detections, while it has had fewer than three
-  // (ThreePointVelocity).
-  std::vector<SeenPoint> early_seen_points;
+  // (ThreePointVelocity). In place, not on the heap: a Track is copied with every track
+  // hypothesis, and a vector's allocation there cost the MHT step 10 % (docs/PERFORMANCE.md).
+  boost::container::static_vector<SeenPoint, 3> early_seen_points;
   // The filter's mode probabilities (the MHT's IMM: CV, CA, left turn, right turn); empty for
   // a single-model filter.
   Eigen::VectorXd mode_probabilities;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <vector>
 
 namespace lookout::tracking {
 namespace {
@@ -67,8 +68,9 @@ TEST(ThreePointVelocity, TheSeenPointsStepsGiveTheVelocityWhereTheyAgree) {
   EXPECT_TRUE(ThreePointVelocity(pieces, 0.99).has_value());
 
   // Two points, or stamps not increasing: nothing.
-  EXPECT_FALSE(ThreePointVelocity({car[0], car[1]}, 0.99).has_value());
-  EXPECT_FALSE(ThreePointVelocity({car[0], car[2], car[1]}, 0.99).has_value());
+  EXPECT_FALSE(ThreePointVelocity(std::vector<SeenPoint>{car[0], car[1]}, 0.99).has_value());
+  EXPECT_FALSE(
+      ThreePointVelocity(std::vector<SeenPoint>{car[0], car[2], car[1]}, 0.99).has_value());
 }
 
 TEST(ThreePointVelocity, ReplacesTheFiltersVelocityOnlyWhereSurer) {
