@@ -105,6 +105,85 @@ bool IsSignificantlyMoving(const Vector2d& velocity_mps, const Matrix2d& covaria
   return MahalanobisSquared(velocity_mps, covariance) >= ChiSquareQuantile(probability, 2.0);
 }
 
+namespace {
+
+// Which stereo object each lidar object pairs with, and how.
+struct Pairing {
+  Pairing(std::size_t lidar_count, std::size_t stereo_count)
+      : stereo_of_lidar(lidar_count),
+        footprint_pair(lidar_count, false),
+        stereo_taken(stereo_count, false) {}
+  std::vector<std::optional<std::size_t>> stereo_of_lidar;
+  std::vector<bool> footprint_pair;  // paired on the footprint, not by the point gate
+  std::vector<bool> stereo_taken;
+};
+
+// Footprint pairs (fuse_objects.h): each unpaired camera body, in the camera's order, with the
+// nearest unpaired lidar object on its footprint.
+void AddFootprintPairs(std::span<const LidarObject* const> lidar,
+                       std::span<const stereo::StereoPoint> stereo,
+                       std::span<const stereo::CartesianPoint> stereo_points,
+                       const AssociationGate& gate, Pairing& pairing) {
+  for (std::size_t i = 0; i < stereo.size(); ++i) {
+    if (pairing.stereo_taken[i]) continue;
+    std::optional<std::size_t> nearest;
+    double nearest_m = 0.0;
+    for (std::size_t j = 0; j < lidar.size(); ++j) {
+      if (pairing.stereo_of_lidar[j]) continue;
+      if (!IsFragmentOf(*lidar[j], stereo[i], stereo_points[i].covariance, gate)) continue;
+      const double d = (lidar[j]->point_m - stereo_points[i].point_m).norm();
+      if (!nearest || d < nearest_m) {
+        nearest = j;
+        nearest_m = d;
+      }
+    }
+    if (!nearest) continue;
+    pairing.stereo_of_lidar[*nearest] = i;
+    pairing.footprint_pair[*nearest] = true;
+    pairing.stereo_taken[i] = true;
+  }
+}
+
+// Fragments (fuse_objects.h): the unpaired lidar objects on the footprint of a stereo object
+// that paired another.
+std::vector<bool> Fragments(std::span<const LidarObject* const> lidar,
+                            std::span<const stereo::StereoPoint> stereo,
+                            std::span<const stereo::CartesianPoint> stereo_points,
+                            const AssociationGate& gate, const Pairing& pairing) {
+  std::vector<bool> fragment(lidar.size(), false);
+  for (std::size_t j = 0; j < lidar.size(); ++j) {
+    if (pairing.stereo_of_lidar[j]) continue;
+    for (std::size_t i = 0; i < stereo.size() && !fragment[j]; ++i) {
+      fragment[j] = pairing.stereo_taken[i] &&
+                    IsFragmentOf(*lidar[j], stereo[i], stereo_points[i].covariance, gate);
+    }
+  }
+  return fragment;
+}
+
+// Pieces (fuse_objects.h): the unpaired dynamic lidar objects within gap_m of a longer or
+// camera-paired dynamic one, judged against the objects as they stand after the camera's rules.
+std::vector<bool> Pieces(std::span<const LidarObject* const> lidar, const Pairing& pairing,
+                         const std::vector<bool>& fragment, double gap_m) {
+  std::vector<bool> piece(lidar.size(), false);
+  if (!(gap_m > 0.0)) return piece;
+  const auto length = [](const LidarObject& o) { return (o.front_end_m - o.front_start_m).norm(); };
+  for (std::size_t j = 0; j < lidar.size(); ++j) {
+    const LidarObject& a = *lidar[j];
+    if (pairing.stereo_of_lidar[j] || fragment[j] || !a.dynamic) continue;
+    for (std::size_t k = 0; k < lidar.size() && !piece[j]; ++k) {
+      const LidarObject& b = *lidar[k];
+      if (k == j || fragment[k] || !b.dynamic) continue;
+      const bool b_wins =
+          pairing.stereo_of_lidar[k] || length(b) > length(a) || (length(b) == length(a) && k < j);
+      piece[j] = b_wins && FrontSegmentDistance(a, b) <= gap_m;
+    }
+  }
+  return piece;
+}
+
+}  // namespace
+
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
                               const FusionOptions& options) {
@@ -135,66 +214,16 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
   const std::vector<AssociationPair> pairs =
       AssociateStereoToLidar(stereo_points, lidar_points, gate);
   result.pairs = pairs.size();
-  std::vector<std::optional<std::size_t>> stereo_of_lidar(lidar_objects.size());
-  std::vector<bool> stereo_taken(stereo.size(), false);
+  Pairing pairing(lidar_objects.size(), stereo.size());
   for (const AssociationPair& pair : pairs) {
-    stereo_of_lidar[pair.lidar] = pair.stereo;
-    stereo_taken[pair.stereo] = true;
+    pairing.stereo_of_lidar[pair.lidar] = pair.stereo;
+    pairing.stereo_taken[pair.stereo] = true;
   }
-
-  // Footprint pairs: an unpaired camera body and the nearest unpaired lidar object on its
-  // footprint, in the camera's order (fuse_objects.h).
-  std::vector<bool> footprint_pair(lidar_objects.size(), false);
-  for (std::size_t i = 0; i < stereo.size(); ++i) {
-    if (stereo_taken[i]) continue;
-    std::optional<std::size_t> nearest;
-    double nearest_m = 0.0;
-    for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
-      if (stereo_of_lidar[j]) continue;
-      if (!IsFragmentOf(*lidar_objects[j], stereo[i], stereo_points[i].covariance, gate)) continue;
-      const double d = (lidar_objects[j]->point_m - stereo_points[i].point_m).norm();
-      if (!nearest || d < nearest_m) {
-        nearest = j;
-        nearest_m = d;
-      }
-    }
-    if (!nearest) continue;
-    stereo_of_lidar[*nearest] = i;
-    footprint_pair[*nearest] = true;
-    stereo_taken[i] = true;
-    ++result.footprint_pairs;
-  }
-
-  // Fragments: an unpaired lidar object on the footprint of a stereo object that paired
-  // another (fuse_objects.h).
-  std::vector<bool> fragment(lidar_objects.size(), false);
-  for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
-    if (stereo_of_lidar[j]) continue;
-    for (std::size_t i = 0; i < stereo.size() && !fragment[j]; ++i) {
-      fragment[j] = stereo_taken[i] &&
-                    IsFragmentOf(*lidar_objects[j], stereo[i], stereo_points[i].covariance, gate);
-    }
-  }
-
-  // Pieces: an unpaired dynamic lidar object beside a longer or camera-paired one
-  // (fuse_objects.h), judged against the objects as they stand after the camera's rules.
-  std::vector<bool> piece(lidar_objects.size(), false);
-  if (options.piece_gap_m > 0.0) {
-    const auto length = [](const LidarObject& o) {
-      return (o.front_end_m - o.front_start_m).norm();
-    };
-    for (std::size_t j = 0; j < lidar_objects.size(); ++j) {
-      const LidarObject& a = *lidar_objects[j];
-      if (stereo_of_lidar[j] || fragment[j] || !a.dynamic) continue;
-      for (std::size_t k = 0; k < lidar_objects.size() && !piece[j]; ++k) {
-        const LidarObject& b = *lidar_objects[k];
-        if (k == j || fragment[k] || !b.dynamic) continue;
-        const bool b_wins =
-            stereo_of_lidar[k] || length(b) > length(a) || (length(b) == length(a) && k < j);
-        piece[j] = b_wins && FrontSegmentDistance(a, b) <= options.piece_gap_m;
-      }
-    }
-  }
+  AddFootprintPairs(lidar_objects, stereo, stereo_points, gate, pairing);
+  result.footprint_pairs = static_cast<std::size_t>(
+      std::count(pairing.footprint_pair.begin(), pairing.footprint_pair.end(), true));
+  const std::vector<bool> fragment = Fragments(lidar_objects, stereo, stereo_points, gate, pairing);
+  const std::vector<bool> piece = Pieces(lidar_objects, pairing, fragment, options.piece_gap_m);
 
   result.lidar.stamp = lidar.stamp;
   result.lidar.mount = lidar.mount;
@@ -211,7 +240,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     // Where the camera paired the object, the lidar point's covariance is the model's with the
     // camera's class (a segmentation object has none of its own). An object the camera did not
     // see keeps its source's (the grid's own class would be the one to use: not measured yet).
-    const auto paired = stereo_of_lidar[j];
+    const auto paired = pairing.stereo_of_lidar[j];
     LidarObject& as_fused = result.lidar.objects.emplace_back(l);
     if (fragment[j]) {
       result.fragment_lidar_ids.push_back(l.id);
@@ -228,7 +257,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     }
     if (const auto i = paired) {
       const stereo::StereoPoint& s = stereo[*i];
-      if (footprint_pair[j]) {
+      if (pairing.footprint_pair[j]) {
         // Two sides' middles are not one point: the camera's is kept, with its front.
         f.point_m = stereo_points[*i].point_m;
         f.point_covariance = stereo_points[*i].covariance;
@@ -265,7 +294,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
   // Seed 004 VI.B: unpaired stereo objects are kept, "because they may correspond to dynamic
   // objects which may not have been detected by laser" (occluded, or transparent to it).
   for (std::size_t i = 0; i < stereo.size(); ++i) {
-    if (stereo_taken[i]) continue;
+    if (pairing.stereo_taken[i]) continue;
     const stereo::StereoPoint& s = stereo[i];
     FusedObject f;
     f.id = next_id();
