@@ -47,13 +47,17 @@ CentreDepth DepthBehindSide(ObjectClass c, double side_length_m, std::optional<b
     return long_side ? 0.5 * width : 0.5 * length;
   };
   switch (c) {
-    case ObjectClass::kPedestrian: return {o.pedestrian_radius_m, 0.0};
-    case ObjectClass::kCyclist: return {box(o.cyclist_length_m, o.cyclist_width_m), 0.0};
-    case ObjectClass::kCar: return {box(o.car_length_m, o.car_width_m), 0.0};
-    case ObjectClass::kTruck: return {box(o.truck_length_m, o.truck_width_m), 0.0};
+    case ObjectClass::kPedestrian:
+      return {o.footprints.pedestrian_radius_m, 0.0};
+    case ObjectClass::kCyclist:
+      return {box(o.footprints.cyclist_length_m, o.footprints.cyclist_width_m), 0.0};
+    case ObjectClass::kCar:
+      return {box(o.footprints.car_length_m, o.footprints.car_width_m), 0.0};
+    case ObjectClass::kTruck:
+      return {box(o.footprints.truck_length_m, o.footprints.truck_width_m), 0.0};
     case ObjectClass::kPole: return {};
     case ObjectClass::kUnknown: {
-      const double h = box(o.car_length_m, o.car_width_m);
+      const double h = box(o.footprints.car_length_m, o.footprints.car_width_m);
       return {0.5 * h, h * h / 12.0};
     }
   }
@@ -126,13 +130,9 @@ void DetectionOptions::Validate(const std::string& source) const {
   auto positive = [&](double v, const char* field) {
     if (!std::isfinite(v) || v <= 0.0) throw InputError(source, 0, field, "must be > 0");
   };
-  positive(car_length_m, "car_length_m");
-  positive(car_width_m, "car_width_m");
-  positive(truck_length_m, "truck_length_m");
-  positive(truck_width_m, "truck_width_m");
-  positive(cyclist_length_m, "cyclist_length_m");
-  positive(cyclist_width_m, "cyclist_width_m");
-  positive(pedestrian_radius_m, "pedestrian_radius_m");
+  if (const auto field = footprints.FirstInvalidField()) {
+    throw InputError(source, 0, *field, "must be > 0");
+  }
   if (!std::isfinite(centre_offset_sigma_m) || centre_offset_sigma_m < 0.0) {
     throw InputError(source, 0, "centre_offset_sigma_m", "must be >= 0");
   }

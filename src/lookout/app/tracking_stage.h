@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "lookout/app/building_map.h"
+#include "lookout/core/class_footprint.h"
 #include "lookout/core/pose2.h"
 #include "lookout/fusion/fused_object.h"
 #include "lookout/tracking/gnn_tracker.h"
@@ -71,12 +72,9 @@ std::optional<TrackerKind> ParseTrackerKind(const std::string& name);
 const char* ToString(TrackerKind kind);
 
 struct DetectionOptions {
-  // The default footprints of the scenario format (docs/scenarios.md), the depth behind the
-  // seen side of an object of each class.
-  double car_length_m = 4.5, car_width_m = 1.8;
-  double truck_length_m = 8.0, truck_width_m = 2.5;
-  double cyclist_length_m = 1.8, cyclist_width_m = 0.6;
-  double pedestrian_radius_m = 0.3;
+  // The classes' footprints (core/class_footprint.h): the depth behind the seen side of an
+  // object of each class.
+  ClassFootprints footprints;
   // Added to the point's covariance (isotropic) for the guessed depth: real cars are 3.5-5 m.
   double centre_offset_sigma_m = 0.25;
   // Below this length the front segment gives no direction; the line of sight does.

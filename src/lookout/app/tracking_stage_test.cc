@@ -99,7 +99,8 @@ TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectsCentreIsUncertainInDepth) {
   head_on.sensor_count = 1;
   const auto d = DetectionsFromFusedObjects(Frame(0, {head_on}), options);
   ASSERT_EQ(d.size(), 1u);
-  const double h = 0.5 * options.car_length_m;  // the seen side is a car's front: 2.25 m deep
+  const double h =
+      0.5 * options.footprints.car_length_m;  // the seen side is a car's front: 2.25 m deep
   EXPECT_NEAR(d[0].position_m.x(), 20.0 + 0.5 * h, 1e-12);
   EXPECT_NEAR(d[0].position_m.y(), 0.0, 1e-12);
   const double offset = options.centre_offset_sigma_m * options.centre_offset_sigma_m;
@@ -112,9 +113,11 @@ TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectsCentreIsUncertainInDepth) {
   side.sensor_count = 1;
   const auto s = DetectionsFromFusedObjects(Frame(0, {side}), options);
   ASSERT_EQ(s.size(), 1u);
-  EXPECT_NEAR(s[0].position_m.x(), 20.0 + 0.25 * options.car_width_m, 1e-12);
-  EXPECT_NEAR(s[0].covariance(0, 0),
-              0.01 + 0.25 * options.car_width_m * options.car_width_m / 12.0 + offset, 1e-12);
+  EXPECT_NEAR(s[0].position_m.x(), 20.0 + 0.25 * options.footprints.car_width_m, 1e-12);
+  EXPECT_NEAR(
+      s[0].covariance(0, 0),
+      0.01 + 0.25 * options.footprints.car_width_m * options.footprints.car_width_m / 12.0 + offset,
+      1e-12);
 }
 
 // Detections are in the odometry frame: the frame's ego pose carries point and covariance.
@@ -426,14 +429,14 @@ TEST(TrackingStageDefaultsTest, TheMhtTracksWithTheGnnBesideIt) {
 
 TEST(TrackingStageOptionsTest, OptionsNameTheBadField) {
   TrackingStageOptions o;
-  o.detections.car_width_m = 0.0;
+  o.detections.footprints.car_width_m = 0.0;
   try {
     o.Validate();
     FAIL() << "accepted a zero car width";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("car_width_m"), std::string::npos) << e.what();
   }
-  o.detections.car_width_m = 1.8;
+  o.detections.footprints.car_width_m = 1.8;
   o.detections.building_margin_m = -0.1;
   try {
     o.Validate();

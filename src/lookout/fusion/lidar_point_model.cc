@@ -31,13 +31,8 @@ void LidarPointModelOptions::Validate() const {
   RequirePointModel(positive(beam_spacing_rad), "beam_spacing_rad", "must be finite and > 0");
   RequirePointModel(std::isfinite(grid_cell_size_m) && grid_cell_size_m >= 0.0, "grid_cell_size_m",
                     "must be finite and >= 0");
-  RequirePointModel(positive(pedestrian_radius_m), "pedestrian_radius_m", "must be finite and > 0");
-  RequirePointModel(positive(cyclist_length_m) && positive(cyclist_width_m), "cyclist_*_m",
-                    "must be finite and > 0");
-  RequirePointModel(positive(car_length_m) && positive(car_width_m), "car_*_m",
-                    "must be finite and > 0");
-  RequirePointModel(positive(truck_length_m) && positive(truck_width_m), "truck_*_m",
-                    "must be finite and > 0");
+  const auto footprint = footprints.FirstInvalidField();
+  RequirePointModel(!footprint, footprint.value_or(""), "must be finite and > 0");
 }
 
 double EndResolutionVariance(double beam_spacing_m, double cell_size_m) {
@@ -88,7 +83,7 @@ Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_clas
   if (!(range > 0.0) || !std::isfinite(range)) return covariance;
   if (options.round_body && object_class == ObjectClass::kPedestrian) {
     covariance += RoundBodyCovariance(
-        options.pedestrian_radius_m, ray,
+        options.footprints.pedestrian_radius_m, ray,
         object.cell_count == 0 ? kSegmentationRoundBodyDepth : kGridRoundBodyDepth);
   }
   // The segmentation bounds each end of its segment from the scan itself (the next beam past
@@ -106,17 +101,19 @@ Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_clas
   double var_along = EndResolutionVariance(spacing, options.grid_cell_size_m);
   switch (object_class) {
     case ObjectClass::kPedestrian:
-      var_along += HiddenExtentVariance(visible, 2.0 * options.pedestrian_radius_m);
+      var_along += HiddenExtentVariance(visible, 2.0 * options.footprints.pedestrian_radius_m);
       break;
     case ObjectClass::kCyclist:
-      var_along +=
-          BoxHiddenExtentVariance(visible, options.cyclist_length_m, options.cyclist_width_m);
+      var_along += BoxHiddenExtentVariance(visible, options.footprints.cyclist_length_m,
+                                           options.footprints.cyclist_width_m);
       break;
     case ObjectClass::kCar:
-      var_along += BoxHiddenExtentVariance(visible, options.car_length_m, options.car_width_m);
+      var_along += BoxHiddenExtentVariance(visible, options.footprints.car_length_m,
+                                           options.footprints.car_width_m);
       break;
     case ObjectClass::kTruck:
-      var_along += BoxHiddenExtentVariance(visible, options.truck_length_m, options.truck_width_m);
+      var_along += BoxHiddenExtentVariance(visible, options.footprints.truck_length_m,
+                                           options.footprints.truck_width_m);
       break;
     case ObjectClass::kUnknown:
     case ObjectClass::kPole:

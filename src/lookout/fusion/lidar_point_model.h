@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include "lookout/core/class_footprint.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/object_class.h"
 
@@ -37,12 +38,8 @@ struct LidarPointModelOptions {
   // cell size (GridOptions::cell_size_m): a LidarObject carries neither.
   double beam_spacing_rad = 0.25 * 3.14159265358979323846 / 180.0;
   double grid_cell_size_m = 0.15;
-  // A class's typical footprint: a pedestrian's radius, the boxes' length and width (the
-  // simulator's class defaults, sim::DefaultLength and DefaultWidth).
-  double pedestrian_radius_m = 0.3;
-  double cyclist_length_m = 1.8, cyclist_width_m = 0.6;
-  double car_length_m = 4.5, car_width_m = 1.8;
-  double truck_length_m = 8.0, truck_width_m = 2.5;
+  // A class's typical footprint (core/class_footprint.h).
+  ClassFootprints footprints;
 
   // Throws std::invalid_argument naming the first field out of range.
   void Validate() const;

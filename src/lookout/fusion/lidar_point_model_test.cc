@@ -175,11 +175,11 @@ TEST(LidarPointModelTest, TermsByClassAndSource) {
             segment.point_covariance);
   const Matrix2d pedestrian =
       LidarPointCovariance(segment, ObjectClass::kPedestrian, lidar, options);
-  EXPECT_LT(
-      (pedestrian - segment.point_covariance -
-       RoundBodyCovariance(options.pedestrian_radius_m, point - lidar, kSegmentationRoundBodyDepth))
-          .norm(),
-      1e-15);
+  EXPECT_LT((pedestrian - segment.point_covariance -
+             RoundBodyCovariance(options.footprints.pedestrian_radius_m, point - lidar,
+                                 kSegmentationRoundBodyDepth))
+                .norm(),
+            1e-15);
   LidarPointModelOptions off;
   off.round_body = false;
   EXPECT_EQ(LidarPointCovariance(segment, ObjectClass::kPedestrian, lidar, off),
@@ -205,7 +205,8 @@ TEST(LidarPointModelTest, TermsByClassAndSource) {
   EXPECT_EQ(LidarPointCovariance(grid, ObjectClass::kCar, lidar, defaults), grid.point_covariance);
   EXPECT_LT((LidarPointCovariance(grid, ObjectClass::kPedestrian, lidar, defaults) -
              grid.point_covariance -
-             RoundBodyCovariance(defaults.pedestrian_radius_m, point - lidar, kGridRoundBodyDepth))
+             RoundBodyCovariance(defaults.footprints.pedestrian_radius_m, point - lidar,
+                                 kGridRoundBodyDepth))
                 .norm(),
             1e-15);
 }
@@ -220,7 +221,7 @@ TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
 
 TEST(LidarPointModelTest, ValidateNamesTheField) {
   LidarPointModelOptions options;
-  options.pedestrian_radius_m = 0.0;
+  options.footprints.pedestrian_radius_m = 0.0;
   try {
     options.Validate();
     FAIL() << "accepted a zero radius";

@@ -19,14 +19,17 @@ struct Extent {
 // The box of a class that is predicted as a vehicle (MovesLikeAVehicle).
 Extent BoxOf(ObjectClass c, const RiskOptions& o) {
   switch (c) {
-    case ObjectClass::kTruck: return {o.truck_length_m, o.truck_width_m};
-    case ObjectClass::kCyclist: return {o.cyclist_length_m, o.cyclist_width_m};
-    default: return {o.car_length_m, o.car_width_m};
+    case ObjectClass::kTruck:
+      return {o.footprints.truck_length_m, o.footprints.truck_width_m};
+    case ObjectClass::kCyclist:
+      return {o.footprints.cyclist_length_m, o.footprints.cyclist_width_m};
+    default:
+      return {o.footprints.car_length_m, o.footprints.car_width_m};
   }
 }
 
 double RoundRadius(ObjectClass c, const RiskOptions& o) {
-  return c == ObjectClass::kPedestrian ? o.pedestrian_radius_m : o.unknown_radius_m;
+  return c == ObjectClass::kPedestrian ? o.footprints.pedestrian_radius_m : o.unknown_radius_m;
 }
 
 bool MovesLikeAVehicle(ObjectClass c) {

@@ -63,7 +63,7 @@ TEST(RiskAssessmentTest, HeadOnCarTtcIsGapOverClosingSpeed) {
   car.id = 7;
   const RiskAssessment boxes = AssessRisk(ego, {car}, o);
   ASSERT_TRUE(boxes.earliest.has_value());
-  const double box_ttc = (60.0 - 0.5 * o.ego_length_m - 0.5 * o.car_length_m) / 20.0;
+  const double box_ttc = (60.0 - 0.5 * o.ego_length_m - 0.5 * o.footprints.car_length_m) / 20.0;
   EXPECT_NEAR(*boxes.objects[*boxes.earliest].ttc_s, box_ttc, 1e-9);
   EXPECT_DOUBLE_EQ(boxes.risk, RiskIndicator(box_ttc, o));
   EXPECT_EQ(boxes.objects[0].id, 7u);
@@ -72,7 +72,7 @@ TEST(RiskAssessmentTest, HeadOnCarTtcIsGapOverClosingSpeed) {
   const RiskAssessment circles = AssessRisk(ego, {car}, o);
   ASSERT_TRUE(circles.earliest.has_value());
   const double reach = 0.5 * std::hypot(o.ego_length_m, o.ego_width_m) +
-                       0.5 * std::hypot(o.car_length_m, o.car_width_m);
+                       0.5 * std::hypot(o.footprints.car_length_m, o.footprints.car_width_m);
   EXPECT_NEAR(*circles.objects[0].ttc_s, (60.0 - reach) / 20.0, 1e-9);
 }
 
@@ -85,8 +85,8 @@ TEST(RiskAssessmentTest, AnUnknownObjectAsFastAsACarIsPredictedAsOne) {
   const ObjectInput fast = Object(ObjectClass::kUnknown, {60.0, 0.0}, {-10.0, 0.0});
   const RiskAssessment as_car = AssessRisk(ego, {fast}, o);
   ASSERT_TRUE(as_car.earliest.has_value());
-  EXPECT_NEAR(*as_car.objects[0].ttc_s, (60.0 - 0.5 * o.ego_length_m - 0.5 * o.car_length_m) / 20.0,
-              1e-9);
+  EXPECT_NEAR(*as_car.objects[0].ttc_s,
+              (60.0 - 0.5 * o.ego_length_m - 0.5 * o.footprints.car_length_m) / 20.0, 1e-9);
   const ObjectInput slow = Object(ObjectClass::kUnknown, {60.0, 0.0}, {-5.0, 0.0});
   const RiskAssessment round = AssessRisk(ego, {slow}, o);
   ASSERT_TRUE(round.earliest.has_value());

@@ -53,13 +53,8 @@ void RiskOptions::Validate(const std::string& source) const {
           "must be > 0 (the steering angle is derived from yaw rate, speed and wheelbase)");
   Require(Positive(ego_length_m), source, "ego_length_m", "must be > 0");
   Require(Positive(ego_width_m), source, "ego_width_m", "must be > 0");
-  Require(Positive(car_length_m), source, "car_length_m", "must be > 0");
-  Require(Positive(car_width_m), source, "car_width_m", "must be > 0");
-  Require(Positive(truck_length_m), source, "truck_length_m", "must be > 0");
-  Require(Positive(truck_width_m), source, "truck_width_m", "must be > 0");
-  Require(Positive(cyclist_length_m), source, "cyclist_length_m", "must be > 0");
-  Require(Positive(cyclist_width_m), source, "cyclist_width_m", "must be > 0");
-  Require(Positive(pedestrian_radius_m), source, "pedestrian_radius_m", "must be > 0");
+  const auto footprint = footprints.FirstInvalidField();
+  Require(!footprint, source, footprint.value_or(""), "must be > 0");
   Require(Positive(unknown_radius_m), source, "unknown_radius_m", "must be > 0");
   Require(!std::isnan(unknown_as_car_speed_mps) && unknown_as_car_speed_mps >= 0.0, source,
           "unknown_as_car_speed_mps", "must be >= 0 (infinity: never)");

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "lookout/core/class_footprint.h"
+
 namespace lookout::risk {
 
 // How a road user's footprint is modelled for collision detection (footprint.h).
@@ -49,10 +51,7 @@ struct RiskOptions {
   // road users (boxes of length x width; the circles' radius is half the diagonal, so that a
   // circle covers its box: car 4.5 x 1.8 m -> 2.42 m).
   double ego_length_m = 4.6, ego_width_m = 1.9;
-  double car_length_m = 4.5, car_width_m = 1.8;
-  double truck_length_m = 8.0, truck_width_m = 2.5;
-  double cyclist_length_m = 1.8, cyclist_width_m = 0.6;
-  double pedestrian_radius_m = 0.3;
+  ClassFootprints footprints;  // core/class_footprint.h
   double unknown_radius_m = 1.0;
   // An object of unknown class moving faster than this is predicted as a car (its box, the
   // bicycle model, the turns at junctions): no walker and few cyclists keep 8 m/s (29 km/h),

@@ -1,5 +1,7 @@
 #include "lookout/sim/scenario.h"
 
+#include "lookout/core/class_footprint.h"
+
 namespace lookout::sim {
 
 double SpeedProfile::At(double t_s) const {
@@ -17,23 +19,9 @@ double SpeedProfile::At(double t_s) const {
   return points.back().y();
 }
 
-// Typical footprints: a mid-size car, a rigid two-axle truck, a bicycle with its rider.
-double DefaultLength(ObjectClass c) {
-  switch (c) {
-    case ObjectClass::kTruck: return 8.0;
-    case ObjectClass::kCyclist: return 1.8;
-    case ObjectClass::kPedestrian: return 0.6;
-    default: return 4.5;
-  }
-}
+// The classes' typical footprints (core/class_footprint.h).
+double DefaultLength(ObjectClass c) { return ClassFootprints{}.Length(c); }
 
-double DefaultWidth(ObjectClass c) {
-  switch (c) {
-    case ObjectClass::kTruck: return 2.5;
-    case ObjectClass::kCyclist: return 0.6;
-    case ObjectClass::kPedestrian: return 0.6;
-    default: return 1.8;
-  }
-}
+double DefaultWidth(ObjectClass c) { return ClassFootprints{}.Width(c); }
 
 }  // namespace lookout::sim

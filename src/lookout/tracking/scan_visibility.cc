@@ -10,16 +10,9 @@
 namespace lookout::tracking {
 
 void ScanVisibilityOptions::Validate(const std::string& source) const {
-  auto require_positive = [&](double v, const char* field) {
-    if (!(std::isfinite(v) && v > 0.0)) throw InputError(source, 0, field, "must be > 0");
-  };
-  require_positive(pedestrian_radius_m, "pedestrian_radius_m");
-  require_positive(cyclist_half_width_m, "cyclist_half_width_m");
-  require_positive(cyclist_half_length_m, "cyclist_half_length_m");
-  require_positive(vehicle_half_width_m, "vehicle_half_width_m");
-  require_positive(vehicle_half_length_m, "vehicle_half_length_m");
-  require_positive(other_half_width_m, "other_half_width_m");
-  require_positive(other_half_length_m, "other_half_length_m");
+  if (const auto field = footprints.FirstInvalidField()) {
+    throw InputError(source, 0, *field, "must be > 0");
+  }
   if (!(std::isfinite(depth_margin_m) && depth_margin_m >= 0.0)) {
     throw InputError(source, 0, "depth_margin_m", "must be >= 0");
   }
@@ -32,19 +25,20 @@ struct HalfSizes {
 };
 
 HalfSizes Sizes(const ScanVisibilityOptions& o, ObjectClass c) {
+  const ClassFootprints& f = o.footprints;
   switch (c) {
     case ObjectClass::kPedestrian:
-      return {o.pedestrian_radius_m, o.pedestrian_radius_m};
+      return {f.pedestrian_radius_m, f.pedestrian_radius_m};
     case ObjectClass::kCyclist:
-      return {o.cyclist_half_width_m, o.cyclist_half_length_m};
+      return {0.5 * f.cyclist_width_m, 0.5 * f.cyclist_length_m};
     case ObjectClass::kCar:
     case ObjectClass::kTruck:
-      return {o.vehicle_half_width_m, o.vehicle_half_length_m};
+      return {0.5 * f.car_width_m, 0.5 * f.car_length_m};
     case ObjectClass::kPole:
     case ObjectClass::kUnknown:
-      return {o.other_half_width_m, o.other_half_length_m};
+      break;
   }
-  return {o.other_half_width_m, o.other_half_length_m};
+  return {f.pedestrian_radius_m, 0.5 * f.car_length_m};
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "lookout/core/class_footprint.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/object_class.h"
 #include "lookout/core/pose2.h"
@@ -34,14 +35,12 @@
 namespace lookout::tracking {
 
 struct ScanVisibilityOptions {
-  // Half the footprint of each class (the scenario format's defaults, docs/scenarios.md): half
-  // its width for the beams across it, half its length for its faces' depth.
-  double pedestrian_radius_m = 0.3;
-  double cyclist_half_width_m = 0.3, cyclist_half_length_m = 0.9;
-  double vehicle_half_width_m = 0.9, vehicle_half_length_m = 2.25;  // cars and trucks
-  // Unknown objects and poles: a walker's width, a car's depth (an unknown object may be
-  // either; taking it for shallower would let it hide itself).
-  double other_half_width_m = 0.3, other_half_length_m = 2.25;
+  // The classes' footprints (core/class_footprint.h): half a class's width for the beams across
+  // it, half its length for its faces' depth. Trucks are taken as cars (the view asks whether the
+  // beams reach a body, and a car's half width is the narrower, surer span); unknown objects and
+  // poles as a walker's width and a car's depth (an unknown object may be either; taking it for
+  // shallower would let it hide itself).
+  ClassFootprints footprints;
   // Added to the depth: the centre's estimate is off by a few decimetres.
   double depth_margin_m = 0.5;
   // Added to the half length for the detections' overrule: a track's centre and the centre a

@@ -130,7 +130,7 @@ TEST(ScanVisibility, DetectionsOverruleTheBeamsAndBrokenScansSeeNothing) {
 
 TEST(ScanVisibility, ValidateNamesTheField) {
   ScanVisibilityOptions o;
-  o.vehicle_half_length_m = -1.0;
+  o.footprints.car_length_m = -1.0;
   const std::string message = [&] {
     try {
       o.Validate("test");
@@ -139,7 +139,7 @@ TEST(ScanVisibility, ValidateNamesTheField) {
     }
     return std::string("no error");
   }();
-  EXPECT_NE(message.find("vehicle_half_length_m"), std::string::npos) << message;
+  EXPECT_NE(message.find("car_length_m"), std::string::npos) << message;
 }
 
 }  // namespace
