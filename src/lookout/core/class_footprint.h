@@ -18,30 +18,22 @@ struct ClassFootprints {
   double car_length_m = 4.5, car_width_m = 1.8;          // a mid-size car
   double truck_length_m = 8.0, truck_width_m = 2.5;      // a rigid two-axle truck
 
+  struct Box {
+    double length_m = 0.0;
+    double width_m = 0.0;
+  };
   // The box of class c: a walker's is the square about its circle; unknown objects and poles
   // take a car's (the simulator's rule).
-  double Length(ObjectClass c) const {
+  Box BoxOf(ObjectClass c) const {
     switch (c) {
       case ObjectClass::kPedestrian:
-        return 2.0 * pedestrian_radius_m;
+        return {2.0 * pedestrian_radius_m, 2.0 * pedestrian_radius_m};
       case ObjectClass::kCyclist:
-        return cyclist_length_m;
+        return {cyclist_length_m, cyclist_width_m};
       case ObjectClass::kTruck:
-        return truck_length_m;
+        return {truck_length_m, truck_width_m};
       default:
-        return car_length_m;
-    }
-  }
-  double Width(ObjectClass c) const {
-    switch (c) {
-      case ObjectClass::kPedestrian:
-        return 2.0 * pedestrian_radius_m;
-      case ObjectClass::kCyclist:
-        return cyclist_width_m;
-      case ObjectClass::kTruck:
-        return truck_width_m;
-      default:
-        return car_width_m;
+        return {car_length_m, car_width_m};
     }
   }
 

@@ -10,11 +10,11 @@ namespace {
 
 TEST(ClassFootprints, BoxesByClassAndTheFirstInvalidField) {
   const ClassFootprints f;
-  EXPECT_EQ(f.Length(ObjectClass::kCar), 4.5);
-  EXPECT_EQ(f.Width(ObjectClass::kTruck), 2.5);
-  EXPECT_EQ(f.Length(ObjectClass::kCyclist), 1.8);
-  EXPECT_EQ(f.Width(ObjectClass::kPedestrian), 0.6);
-  EXPECT_EQ(f.Length(ObjectClass::kUnknown), f.car_length_m);
+  EXPECT_EQ(f.BoxOf(ObjectClass::kCar).length_m, 4.5);
+  EXPECT_EQ(f.BoxOf(ObjectClass::kTruck).width_m, 2.5);
+  EXPECT_EQ(f.BoxOf(ObjectClass::kCyclist).length_m, 1.8);
+  EXPECT_EQ(f.BoxOf(ObjectClass::kPedestrian).width_m, 0.6);
+  EXPECT_EQ(f.BoxOf(ObjectClass::kUnknown).length_m, f.car_length_m);
   EXPECT_FALSE(f.FirstInvalidField().has_value());
 
   ClassFootprints bad = f;

@@ -20,8 +20,8 @@ double SpeedProfile::At(double t_s) const {
 }
 
 // The classes' typical footprints (core/class_footprint.h).
-double DefaultLength(ObjectClass c) { return ClassFootprints{}.Length(c); }
+double DefaultLength(ObjectClass c) { return ClassFootprints{}.BoxOf(c).length_m; }
 
-double DefaultWidth(ObjectClass c) { return ClassFootprints{}.Width(c); }
+double DefaultWidth(ObjectClass c) { return ClassFootprints{}.BoxOf(c).width_m; }
 
 }  // namespace lookout::sim
