@@ -50,14 +50,15 @@ CentreDepth DepthBehindSide(ObjectClass c, double side_length_m, std::optional<b
     case ObjectClass::kPedestrian:
       return {o.footprints.pedestrian_radius_m, 0.0};
     case ObjectClass::kCyclist:
-      return {box(o.footprints.cyclist_length_m, o.footprints.cyclist_width_m), 0.0};
     case ObjectClass::kCar:
-      return {box(o.footprints.car_length_m, o.footprints.car_width_m), 0.0};
-    case ObjectClass::kTruck:
-      return {box(o.footprints.truck_length_m, o.footprints.truck_width_m), 0.0};
+    case ObjectClass::kTruck: {
+      const ClassFootprints::Box b = o.footprints.BoxOf(c);
+      return {box(b.length_m, b.width_m), 0.0};
+    }
     case ObjectClass::kPole: return {};
-    case ObjectClass::kUnknown: {
-      const double h = box(o.footprints.car_length_m, o.footprints.car_width_m);
+    case ObjectClass::kUnknown: {  // a car's, at an unknown depth behind the side
+      const ClassFootprints::Box b = o.footprints.BoxOf(ObjectClass::kCar);
+      const double h = box(b.length_m, b.width_m);
       return {0.5 * h, h * h / 12.0};
     }
   }
@@ -278,8 +279,6 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
       // The camera's velocity (fused with the lidar's where it had one), over the ground.
       d.velocity_mps = r * o.velocity_mps;
       d.velocity_covariance = r * o.velocity_covariance * r.transpose();
-    }
-    if (o.stereo_id) {
       if (camera_frames >= 2) d.camera = tracking::CameraEvidence::kSeen;
     } else if (camera_mount && InCameraView(*camera_mount, centre, options) &&
                !CameraObjectNear(frame, o, camera_gate) &&

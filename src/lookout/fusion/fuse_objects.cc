@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "lookout/core/chi_square.h"
+#include "lookout/core/planar_geometry.h"
 #include "lookout/fusion/association.h"
 #include "lookout/fusion/gate.h"
 #include "lookout/fusion/gaussian_fusion.h"
@@ -45,13 +46,6 @@ Vector2d NearestPointOnBox(const stereo::OrientedBox& box, const Vector2d& p) {
   return box.center_m + to_world * local.cwiseMax(-half).cwiseMin(half);
 }
 
-double PointToSegment(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
-  const Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
 }  // namespace
 
 double FrontSegmentDistance(const LidarObject& a, const LidarObject& b) {
@@ -59,12 +53,9 @@ double FrontSegmentDistance(const LidarObject& a, const LidarObject& b) {
   const Vector2d& a1 = a.front_end_m;
   const Vector2d& b0 = b.front_start_m;
   const Vector2d& b1 = b.front_end_m;
-  const auto cross = [](const Vector2d& u, const Vector2d& v) {
-    return u.x() * v.y() - u.y() * v.x();
-  };
   // Crossing: each segment's ends on opposite sides of the other's line.
-  if (cross(a1 - a0, b0 - a0) * cross(a1 - a0, b1 - a0) < 0.0 &&
-      cross(b1 - b0, a0 - b0) * cross(b1 - b0, a1 - b0) < 0.0) {
+  if (Cross(a1 - a0, b0 - a0) * Cross(a1 - a0, b1 - a0) < 0.0 &&
+      Cross(b1 - b0, a0 - b0) * Cross(b1 - b0, a1 - b0) < 0.0) {
     return 0.0;
   }
   // Otherwise they are nearest at an end of one of them.

@@ -104,17 +104,12 @@ Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_clas
       var_along += HiddenExtentVariance(visible, 2.0 * options.footprints.pedestrian_radius_m);
       break;
     case ObjectClass::kCyclist:
-      var_along += BoxHiddenExtentVariance(visible, options.footprints.cyclist_length_m,
-                                           options.footprints.cyclist_width_m);
-      break;
     case ObjectClass::kCar:
-      var_along += BoxHiddenExtentVariance(visible, options.footprints.car_length_m,
-                                           options.footprints.car_width_m);
+    case ObjectClass::kTruck: {
+      const ClassFootprints::Box b = options.footprints.BoxOf(object_class);
+      var_along += BoxHiddenExtentVariance(visible, b.length_m, b.width_m);
       break;
-    case ObjectClass::kTruck:
-      var_along += BoxHiddenExtentVariance(visible, options.footprints.truck_length_m,
-                                           options.footprints.truck_width_m);
-      break;
+    }
     case ObjectClass::kUnknown:
     case ObjectClass::kPole:
       break;

@@ -12,21 +12,7 @@
 namespace lookout::risk {
 namespace {
 
-struct Extent {
-  double length_m = 0.0, width_m = 0.0;
-};
-
-// The box of a class that is predicted as a vehicle (MovesLikeAVehicle).
-Extent BoxOf(ObjectClass c, const RiskOptions& o) {
-  switch (c) {
-    case ObjectClass::kTruck:
-      return {o.footprints.truck_length_m, o.footprints.truck_width_m};
-    case ObjectClass::kCyclist:
-      return {o.footprints.cyclist_length_m, o.footprints.cyclist_width_m};
-    default:
-      return {o.footprints.car_length_m, o.footprints.car_width_m};
-  }
-}
+using Extent = ClassFootprints::Box;
 
 double RoundRadius(ObjectClass c, const RiskOptions& o) {
   return c == ObjectClass::kPedestrian ? o.footprints.pedestrian_radius_m : o.unknown_radius_m;
@@ -117,7 +103,7 @@ Turns PredictTurns(const ObjectInput& object, const Carriageways& roads,
   }
   const double yaw = object.yaw_rad ? *object.yaw_rad
                                     : std::atan2(object.velocity_mps.y(), object.velocity_mps.x());
-  const Extent box = BoxOf(object.object_class, options);
+  const Extent box = options.footprints.BoxOf(object.object_class);
   const TurnLimits limits{options.max_turn_lateral_acceleration_mps2,
                           options.turn_heading_tolerance_rad, 0.5 * box.width_m};
   const std::optional<TurnPath> left =
@@ -203,7 +189,7 @@ FootprintTrack PredictObject(const ObjectInput& object, const RiskOptions& optio
     }
     return FootprintsAlong(
         PosesOf(PredictBicycle(s, {}, options.wheelbase_m, options.horizon_s, options.step_s)),
-        BoxOf(object.object_class, options), heading_known, 0.0, margin, options);
+        options.footprints.BoxOf(object.object_class), heading_known, 0.0, margin, options);
   }
   const double radius = RoundRadius(object.object_class, options) + margin;
   const std::size_t n = StepCount(options);

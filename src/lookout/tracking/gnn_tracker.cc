@@ -78,7 +78,7 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
     t.state = UpdateState(t.state, d.position_m, d.covariance).posterior;
     t = AfterDetection(options_, std::move(t), d, stamp);
     if (t.updates == 3) {
-      t.state = WithSeenVelocity(t.state, {t.early_seen_points.data(), t.early_seen_points.size()},
+      t.state = WithSeenVelocity(t.state, t.early_seen_points,
                                  options_.seen_velocity_agreement_probability);
     }
   }

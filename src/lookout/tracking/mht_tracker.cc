@@ -258,9 +258,9 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
         if (track.updates == 3) {
           // The third detection: the seen points' velocity, where surer (tracker.h).
           const Gaussian combined = Combine(imm_, node->imm);
-          const Gaussian seen = WithSeenVelocity(
-              combined, {track.early_seen_points.data(), track.early_seen_points.size()},
-              options_.management.seen_velocity_agreement_probability);
+          const Gaussian seen =
+              WithSeenVelocity(combined, track.early_seen_points,
+                               options_.management.seen_velocity_agreement_probability);
           if (seen.mean != combined.mean || seen.cov != combined.cov) {
             const double sa = options_.initial_acceleration_sigma_mps2;
             node->imm = InitImm(imm_, seen, {kX, kY, kVx, kVy}, sa * sa, stamp);

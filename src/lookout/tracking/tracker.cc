@@ -7,11 +7,19 @@
 
 namespace lookout::tracking {
 
-bool DetectionUsable(const Detection& d) {
-  if (!d.position_m.allFinite() || !d.covariance.allFinite()) return false;
-  const Eigen::Matrix2d& c = d.covariance;
+namespace {
+
+// Finite, symmetric (to rounding) and positive definite.
+bool UsableCovariance(const Eigen::Matrix2d& c) {
+  if (!c.allFinite()) return false;
   if (std::abs(c(0, 1) - c(1, 0)) > 1e-9 * (1.0 + c.cwiseAbs().maxCoeff())) return false;
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(c).eigenvalues().minCoeff() > 0.0;
+}
+
+}  // namespace
+
+bool DetectionUsable(const Detection& d) {
+  return d.position_m.allFinite() && UsableCovariance(d.covariance);
 }
 
 Gaussian BirthState(const Detection& d, double speed_sigma_mps) {
@@ -19,15 +27,10 @@ Gaussian BirthState(const Detection& d, double speed_sigma_mps) {
              Eigen::Matrix4d::Zero()};
   g.cov.topLeftCorner<2, 2>() = d.covariance;
   Eigen::Matrix2d velocity_cov = Eigen::Matrix2d::Identity() * speed_sigma_mps * speed_sigma_mps;
-  if (d.velocity_mps && d.velocity_mps->allFinite()) {
-    const Eigen::Matrix2d& c = d.velocity_covariance;
-    const bool usable =
-        c.allFinite() && std::abs(c(0, 1) - c(1, 0)) <= 1e-9 * (1.0 + c.cwiseAbs().maxCoeff()) &&
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(c).eigenvalues().minCoeff() > 0.0;
-    if (usable && c.trace() < velocity_cov.trace()) {
-      g.mean.segment<2>(2) = *d.velocity_mps;
-      velocity_cov = c;
-    }
+  if (d.velocity_mps && d.velocity_mps->allFinite() && UsableCovariance(d.velocity_covariance) &&
+      d.velocity_covariance.trace() < velocity_cov.trace()) {
+    g.mean.segment<2>(2) = *d.velocity_mps;
+    velocity_cov = d.velocity_covariance;
   }
   g.cov.bottomRightCorner<2, 2>() = velocity_cov;
   return g;
@@ -62,10 +65,11 @@ Gaussian WithSurerVelocity(const Gaussian& state, const Gaussian& velocity) {
   return out;
 }
 
-Gaussian WithSeenVelocity(const Gaussian& state, std::span<const SeenPoint> early_seen_points,
+Gaussian WithSeenVelocity(const Gaussian& state, const EarlySeenPoints& early_seen_points,
                           double agreement_probability) {
   if (!(agreement_probability > 0.0) || early_seen_points.size() != 3) return state;
-  const std::optional<Gaussian> v = ThreePointVelocity(early_seen_points, agreement_probability);
+  const std::optional<Gaussian> v = ThreePointVelocity(
+      {early_seen_points.data(), early_seen_points.size()}, agreement_probability);
   return v ? WithSurerVelocity(state, *v) : state;
 }
 

@@ -60,6 +60,9 @@ struct SeenPoint {
   Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
 };
+// In place, not on the heap: a Track is copied with every track hypothesis, and a vector's
+// allocation there cost the MHT step 10 % (docs/PERFORMANCE.md).
+using EarlySeenPoints = boost::container::static_vector<SeenPoint, 3>;
 
 // The velocity of a track's first three seen points, where the two steps agree: v12 and v23,
 // each a difference over its interval, must differ by no more than the chi-square (2 dof)
@@ -80,7 +83,7 @@ std::optional<Gaussian> ThreePointVelocity(std::span<const SeenPoint> points,
 // What a track's third detection makes of its velocity: `state` with the seen points' velocity
 // (ThreePointVelocity) where the track has its three seen points and it is surer
 // (WithSurerVelocity); `state` otherwise. agreement_probability 0: `state`.
-Gaussian WithSeenVelocity(const Gaussian& state, std::span<const SeenPoint> early_seen_points,
+Gaussian WithSeenVelocity(const Gaussian& state, const EarlySeenPoints& early_seen_points,
                           double agreement_probability);
 
 // `state` (x, y, vx, vy) with its velocity replaced by `velocity` where that is surer (smaller
@@ -110,9 +113,8 @@ struct Track {
   // source, from the camera's evidence on its detections (track_management.h); 0 without any.
   double existence_log_odds = 0.0;
   // The seen points of its first detections, while it has had fewer than three
-  // (ThreePointVelocity). In place, not on the heap: a Track is copied with every track
-  // hypothesis, and a vector's allocation there cost the MHT step 10 % (docs/PERFORMANCE.md).
-  boost::container::static_vector<SeenPoint, 3> early_seen_points;
+  // (ThreePointVelocity).
+  EarlySeenPoints early_seen_points;
   // The filter's mode probabilities (the MHT's IMM: CV, CA, left turn, right turn); empty for
   // a single-model filter.
   Eigen::VectorXd mode_probabilities;

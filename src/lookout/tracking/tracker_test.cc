@@ -76,8 +76,7 @@ TEST(ThreePointVelocity, TheSeenPointsStepsGiveTheVelocityWhereTheyAgree) {
 TEST(ThreePointVelocity, ReplacesTheFiltersVelocityOnlyWhereSurer) {
   Gaussian state{Eigen::Vector4d(1.0, 2.0, 0.5, 3.0), Eigen::Matrix4d::Identity() * 4.0};
   state.cov(0, 2) = state.cov(2, 0) = 1.0;
-  const std::vector<SeenPoint> car = {Seen(0.0, 0.0, 0.0), Seen(0.1, 0.0, 0.8),
-                                      Seen(0.2, 0.0, 1.6)};
+  const EarlySeenPoints car = {Seen(0.0, 0.0, 0.0), Seen(0.1, 0.0, 0.8), Seen(0.2, 0.0, 1.6)};
   const Gaussian seen = WithSeenVelocity(state, car, 0.99);
   EXPECT_EQ(seen.mean.head(2), state.mean.head(2));
   EXPECT_LT((seen.mean.tail(2) - Eigen::Vector2d(0.0, 8.0)).norm(), 1e-9);
