@@ -120,6 +120,33 @@ TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectsCentreIsUncertainInDepth) {
       1e-12);
 }
 
+// The same broadside object of unknown class holds each box class's centre for a track that
+// knows its class: a cyclist's and a car's half a width behind the side, a truck's half a
+// length (4.5 m is shorter than half a truck's length and width: its end), each with the
+// covariance of the seen point alone; none for a walker, and none when the class is known.
+TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectHoldsEachBoxsCentre) {
+  const DetectionOptions options;
+  fusion::FusedObject side = Object(ObjectClass::kUnknown, {20.0, -2.25}, {20.0, 2.25});
+  side.stereo_id.reset();
+  side.sensor_count = 1;
+  const auto d = DetectionsFromFusedObjects(Frame(0, {side}), options);
+  ASSERT_EQ(d.size(), 1u);
+  const double offset = options.centre_offset_sigma_m * options.centre_offset_sigma_m;
+  for (const ObjectClass c : {ObjectClass::kCyclist, ObjectClass::kCar, ObjectClass::kTruck}) {
+    const auto& centre = d[0].class_centres[static_cast<std::size_t>(c)];
+    ASSERT_TRUE(centre.has_value());
+    const ClassFootprints::Box box = options.footprints.BoxOf(c);
+    const double depth = c == ObjectClass::kTruck ? box.length_m : box.width_m;
+    EXPECT_NEAR(centre->position_m.x(), 20.0 + 0.5 * depth, 1e-12);
+    EXPECT_NEAR(centre->position_m.y(), 0.0, 1e-12);
+    EXPECT_TRUE(centre->covariance.isApprox((0.01 + offset) * Eigen::Matrix2d::Identity()));
+  }
+  EXPECT_FALSE(d[0].class_centres[static_cast<std::size_t>(ObjectClass::kPedestrian)]);
+  const auto car = DetectionsFromFusedObjects(
+      Frame(0, {Object(ObjectClass::kCar, {20.0, -2.25}, {20.0, 2.25})}), options);
+  for (const auto& centre : car[0].class_centres) EXPECT_FALSE(centre.has_value());
+}
+
 // Detections are in the odometry frame: the frame's ego pose carries point and covariance.
 TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
   fusion::FusedObject o = Object(ObjectClass::kUnknown, {10.0, 0.0}, {10.0, 0.0});

@@ -55,9 +55,9 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     for (std::size_t j = 0; j < detections.size(); ++j) {
       if (!ClassesCompatible(tracks_[i].object_class, detections[j].object_class)) continue;
-      const MeasurementPrediction p =
-          PredictMeasurement(tracks_[i].state, detections[j].covariance);
-      const Eigen::Vector2d v = detections[j].position_m - p.z;
+      const ClassCentre z = MeasurementFor(detections[j], tracks_[i].object_class);
+      const MeasurementPrediction p = PredictMeasurement(tracks_[i].state, z.covariance);
+      const Eigen::Vector2d v = z.position_m - p.z;
       if (NormalisedSquare(v, p.S) > gate) continue;
       cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
           -GaussianLogLikelihood(v, p.S);
@@ -75,7 +75,8 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
     }
     const Detection& d = detections[static_cast<std::size_t>(j)];
     used[static_cast<std::size_t>(j)] = true;
-    t.state = UpdateState(t.state, d.position_m, d.covariance).posterior;
+    const ClassCentre z = MeasurementFor(d, t.object_class);
+    t.state = UpdateState(t.state, z.position_m, z.covariance).posterior;
     t = AfterDetection(options_, std::move(t), d, stamp);
     if (t.updates == 3) {
       t.state = WithSeenVelocity(t.state, t.early_seen_points,

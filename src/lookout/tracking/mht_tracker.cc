@@ -157,11 +157,12 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
       for (int j = 0; j < detection_count; ++j) {
         const Detection& d = detections[static_cast<std::size_t>(j)];
         if (!ClassesCompatible(node->track.object_class, d.object_class)) continue;
-        const Eigen::Vector2d v = d.position_m - p.combined.z;
+        const ClassCentre z = MeasurementFor(d, node->track.object_class);
+        const Eigen::Vector2d v = z.position_m - p.combined.z;
         // Written so that a NaN (a detection or a track far beyond any road, squares overflowing)
         // fails the gate and the score instead of passing them.
-        if (!(Nis2(v, p.combined.S + d.covariance) <= gate)) continue;
-        const double log_likelihood = ImmLogLikelihood(b.predicted, p, d.position_m, d.covariance);
+        if (!(Nis2(v, p.combined.S + z.covariance) <= gate)) continue;
+        const double log_likelihood = ImmLogLikelihood(b.predicted, p, z.position_m, z.covariance);
         if (!std::isfinite(log_likelihood)) continue;
         b.gated.push_back({j, log_likelihood, {}});
       }
@@ -254,7 +255,8 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
       if (!Expired(options_.management, track)) {
         auto node = std::make_shared<Node>();
         node->tree = b.node->tree;
-        node->imm = Update(imm_, b.predicted, d.position_m, d.covariance).state;
+        const ClassCentre z = MeasurementFor(d, b.node->track.object_class);
+        node->imm = Update(imm_, b.predicted, z.position_m, z.covariance).state;
         if (track.updates == 3) {
           // The third detection: the seen points' velocity, where surer (tracker.h).
           const Gaussian combined = Combine(imm_, node->imm);

@@ -406,6 +406,45 @@ TEST(MhtTrackerTest, AYoungTracksVelocityComesFromItsSeenPoints) {
   }
 }
 
+// A cyclist riding north at 5 m/s along x = 10, seen by both sensors for a second, then by the
+// lidar alone: an object of unknown class whose centre the tracking stage puts half a car's
+// depth (0.9 m, a variance of 0.27 m^2 across) behind its seen side, and a cyclist's 0.3 m
+// behind it. Both trackers keep the cyclist's track on its line with the cyclist's centre;
+// with the unknown centre alone it is pulled towards x = 10.9.
+TEST(MhtTrackerTest, ACyclistsTrackMeasuresACyclistsCentreWhenTheCameraLosesIt) {
+  const auto run = [](bool class_centres) {
+    MhtTracker mht;
+    GnnTracker gnn;
+    for (int k = 0; k < 20; ++k) {
+      const Eigen::Vector2d centre(10.0, -20.0 + 5.0 * kDt * k);
+      Detection d = At(centre, ObjectClass::kCyclist, 2, 0.1);
+      if (k >= 10) {
+        d = At(centre + Eigen::Vector2d(0.6, 0.0), ObjectClass::kUnknown, 1);
+        d.covariance = Eigen::Vector2d(0.01 + 0.27, 0.01).asDiagonal();
+        if (class_centres) {
+          d.class_centres[static_cast<std::size_t>(ObjectClass::kCyclist)] =
+              ClassCentre{centre, 0.01 * Eigen::Matrix2d::Identity()};
+        }
+      }
+      mht.Step(k * kStep, {d});
+      gnn.Step(k * kStep, {d});
+    }
+    return std::pair{mht.ConfirmedTracks(), gnn.ConfirmedTracks()};
+  };
+  const auto [mht, gnn] = run(true);
+  for (const std::vector<Track>& tracks : {mht, gnn}) {
+    ASSERT_EQ(tracks.size(), 1u);
+    EXPECT_EQ(tracks[0].object_class, ObjectClass::kCyclist);
+    EXPECT_NEAR(tracks[0].Position().x(), 10.0, 0.05);
+    EXPECT_NEAR(tracks[0].Velocity().x(), 0.0, 0.1);
+  }
+  const auto [mht_unknown, gnn_unknown] = run(false);
+  for (const std::vector<Track>& tracks : {mht_unknown, gnn_unknown}) {
+    ASSERT_EQ(tracks.size(), 1u);
+    EXPECT_GT(tracks[0].Position().x(), 10.3) << "pulled towards the unknown centre";
+  }
+}
+
 TEST(MhtTrackerTest, ClassGatingHoldsInEveryHypothesis) {
   MhtTracker tracker;
   for (int k = 0; k < 5; ++k) {

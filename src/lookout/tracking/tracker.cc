@@ -22,6 +22,14 @@ bool DetectionUsable(const Detection& d) {
   return d.position_m.allFinite() && UsableCovariance(d.covariance);
 }
 
+ClassCentre MeasurementFor(const Detection& d, ObjectClass track_class) {
+  if (d.object_class == ObjectClass::kUnknown) {
+    const std::optional<ClassCentre>& c = d.class_centres[static_cast<std::size_t>(track_class)];
+    if (c && c->position_m.allFinite() && UsableCovariance(c->covariance)) return *c;
+  }
+  return {d.position_m, d.covariance};
+}
+
 Gaussian BirthState(const Detection& d, double speed_sigma_mps) {
   Gaussian g{Eigen::Vector4d(d.position_m.x(), d.position_m.y(), 0.0, 0.0),
              Eigen::Matrix4d::Zero()};

@@ -6,6 +6,7 @@
 // put the MHT beside the baseline on the same input.
 
 #include <Eigen/Core>
+#include <array>
 #include <boost/container/static_vector.hpp>
 #include <cmath>
 #include <cstdint>
@@ -27,6 +28,12 @@ enum class CameraEvidence {
   kUnseen,  // inside the camera's field of view and depth, and the camera reported nothing there
 };
 
+// Where a detection puts an object's centre if the object is of a given class.
+struct ClassCentre {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // m^2
+};
+
 // One object to track, in a ground-fixed frame: a fused object, or one sensor's.
 struct Detection {
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
@@ -43,7 +50,21 @@ struct Detection {
   // scans' seen points measure the velocity without it (ThreePointVelocity).
   std::optional<Eigen::Vector2d> seen_point_m;
   Eigen::Matrix2d seen_point_covariance = Eigen::Matrix2d::Identity();  // m^2
+  // For a detection of unknown class: where an object of class c would have its centre
+  // (indexed by ObjectClass), where the tracking stage says; a track of class c measures that
+  // (MeasurementFor).
+  std::array<std::optional<ClassCentre>, kAllObjectClasses.size()> class_centres;
 };
+
+// The position a track of class `track_class` measures in `d`: d's centre for that class where
+// d is of unknown class and holds a usable one, else d's own position and covariance.
+// Why: an object the camera stops seeing is of unknown class, and the tracking stage puts its
+// centre half a car's depth behind its seen side, with that depth's variance. A cyclist whose
+// class the camera had given its track left the camera's view and its track followed that centre
+// 0.8 m sideways; the offset, the same every scan, became a sideways velocity of 0.6 m/s that
+// carried the track off its cyclist once a building hid it (intersafe-fig8). The track knows
+// what the detection does not: which class's depth applies.
+ClassCentre MeasurementFor(const Detection& d, ObjectClass track_class);
 
 // A new track's state (x, y, vx, vy) from its first detection: the detection's position and
 // covariance; the detection's measured velocity where it has one (finite, its covariance

@@ -89,5 +89,30 @@ TEST(ThreePointVelocity, ReplacesTheFiltersVelocityOnlyWhereSurer) {
   EXPECT_EQ(WithSeenVelocity(sure, car, 0.99).mean, sure.mean);
 }
 
+// An object of unknown class seen on one side: a cyclist's track measures the cyclist's centre
+// behind it, a track of unknown class (or a walker's, for which none is given) the detection's
+// own; a detection whose class is known, or whose class centre is unusable, gives its own.
+TEST(MeasurementFor, ATrackOfKnownClassMeasuresItsClasssCentre) {
+  Detection d = At(11.0, 4.0);  // half a car's depth behind the side at x = 10
+  ClassCentre cyclist{Eigen::Vector2d(10.3, 4.0), 0.01 * Eigen::Matrix2d::Identity()};
+  d.class_centres[static_cast<std::size_t>(ObjectClass::kCyclist)] = cyclist;
+  EXPECT_EQ(MeasurementFor(d, ObjectClass::kCyclist).position_m, cyclist.position_m);
+  EXPECT_EQ(MeasurementFor(d, ObjectClass::kCyclist).covariance, cyclist.covariance);
+  for (const ObjectClass c : {ObjectClass::kUnknown, ObjectClass::kPedestrian, ObjectClass::kCar}) {
+    EXPECT_EQ(MeasurementFor(d, c).position_m, d.position_m);
+    EXPECT_EQ(MeasurementFor(d, c).covariance, d.covariance);
+  }
+  Detection known = d;
+  known.object_class = ObjectClass::kCar;
+  EXPECT_EQ(MeasurementFor(known, ObjectClass::kCyclist).position_m, d.position_m);
+  Detection unusable = d;
+  unusable.class_centres[static_cast<std::size_t>(ObjectClass::kCyclist)]->covariance(1, 1) = -1.0;
+  EXPECT_EQ(MeasurementFor(unusable, ObjectClass::kCyclist).position_m, d.position_m);
+  unusable.class_centres[static_cast<std::size_t>(ObjectClass::kCyclist)] =
+      ClassCentre{Eigen::Vector2d(std::numeric_limits<double>::quiet_NaN(), 4.0),
+                  0.01 * Eigen::Matrix2d::Identity()};
+  EXPECT_EQ(MeasurementFor(unusable, ObjectClass::kCyclist).position_m, d.position_m);
+}
+
 }  // namespace
 }  // namespace lookout::tracking
