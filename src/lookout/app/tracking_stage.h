@@ -79,6 +79,12 @@ struct DetectionOptions {
   double centre_offset_sigma_m = 0.25;
   // Below this length the front segment gives no direction; the line of sight does.
   double min_segment_m = 0.2;
+  // An object of unknown class whose seen side is shorter than this is walker-sized (the
+  // segmentation's bound for a round arc, lidar::SegmentationOptions::min_box_side_m): its
+  // centre is a walker's radius behind the side, give or take walker_depth_sigma_m (it may
+  // be a cyclist end-on, or the visible end of something longer), not half a car's depth.
+  double walker_side_max_m = 0.7;
+  double walker_depth_sigma_m = 0.3;
   bool keep_static_lidar_objects = false;
   // The camera's field of view and depth (the seed vehicle's camera, docs/scenarios.md), and
   // how far inside them a centre must be for the camera's silence to count.

@@ -120,6 +120,30 @@ TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectsCentreIsUncertainInDepth) {
       1e-12);
 }
 
+// A lidar-only object of unknown class whose seen side is walker-sized (0.5 m, under
+// walker_side_max_m) is centred a walker's radius behind it, with walker_depth_sigma_m along
+// the side's normal; 0.8 m of side is taken for a car's as before.
+TEST(DetectionsFromFusedObjectsTest, AWalkerSizedUnknownObjectIsCentredAWalkersRadiusBehind) {
+  const DetectionOptions options;
+  const auto detect = [&](double side_m) {
+    fusion::FusedObject o =
+        Object(ObjectClass::kUnknown, {10.0, 0.5 * side_m}, {10.0, -0.5 * side_m});
+    o.stereo_id.reset();
+    o.sensor_count = 1;
+    const auto d = DetectionsFromFusedObjects(Frame(0, {o}), options);
+    EXPECT_EQ(d.size(), 1u);
+    return d.empty() ? tracking::Detection{} : d[0];
+  };
+  const double offset = options.centre_offset_sigma_m * options.centre_offset_sigma_m;
+  const tracking::Detection walker = detect(0.5);
+  EXPECT_NEAR(walker.position_m.x(), 10.0 + options.footprints.pedestrian_radius_m, 1e-12);
+  EXPECT_NEAR(walker.covariance(0, 0),
+              0.01 + options.walker_depth_sigma_m * options.walker_depth_sigma_m + offset, 1e-12);
+  EXPECT_NEAR(walker.covariance(1, 1), 0.01 + offset, 1e-12);
+  const double h = 0.5 * options.footprints.car_length_m;  // its front: 2.25 m deep
+  EXPECT_NEAR(detect(0.8).position_m.x(), 10.0 + 0.5 * h, 1e-12);
+}
+
 // The same broadside object of unknown class holds each box class's centre for a track that
 // knows its class: a cyclist's and a car's half a width behind the side, a truck's half a
 // length (4.5 m is shorter than half a truck's length and width: its end), each with the
@@ -149,15 +173,15 @@ TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectHoldsEachBoxsCentre) {
 
 // Detections are in the odometry frame: the frame's ego pose carries point and covariance.
 TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
-  fusion::FusedObject o = Object(ObjectClass::kUnknown, {10.0, 0.0}, {10.0, 0.0});
+  fusion::FusedObject o = Object(ObjectClass::kUnknown, {10.0, 0.9}, {10.0, -0.9});
   o.point_covariance << 4.0, 0.0, 0.0, 1.0;
   DetectionOptions options;
   options.centre_offset_sigma_m = 0.0;
   const Pose2 ego(5.0, -3.0, kPi / 2.0);
   const auto d = DetectionsFromFusedObjects(Frame(0, {o}, ego), options);
   ASSERT_EQ(d.size(), 1u);
-  // Unknown: the centre 1.125 m behind the point along the line of sight (vehicle x), with
-  // variance 2.25^2 / 12 there (AnUnknownObjectsCentreIsUncertainInDepth).
+  // Unknown, a car's front wide: the centre 1.125 m behind the point along the side's normal
+  // (vehicle x), with variance 2.25^2 / 12 there (AnUnknownObjectsCentreIsUncertainInDepth).
   const double depth = 1.125, depth_variance = 2.25 * 2.25 / 12.0;
   EXPECT_NEAR(d[0].position_m.x(), 5.0, 1e-12);
   EXPECT_NEAR(d[0].position_m.y(), 7.0 + depth, 1e-12);
