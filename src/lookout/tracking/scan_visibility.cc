@@ -16,6 +16,9 @@ void ScanVisibilityOptions::Validate(const std::string& source) const {
   if (!(std::isfinite(depth_margin_m) && depth_margin_m >= 0.0)) {
     throw InputError(source, 0, "depth_margin_m", "must be >= 0");
   }
+  if (!(std::isfinite(detection_margin_m) && detection_margin_m >= 0.0)) {
+    throw InputError(source, 0, "detection_margin_m", "must be >= 0");
+  }
 }
 
 namespace {

@@ -129,17 +129,24 @@ TEST(ScanVisibility, DetectionsOverruleTheBeamsAndBrokenScansSeeNothing) {
 }
 
 TEST(ScanVisibility, ValidateNamesTheField) {
-  ScanVisibilityOptions o;
-  o.footprints.car_length_m = -1.0;
-  const std::string message = [&] {
+  const auto message = [](const ScanVisibilityOptions& o) {
     try {
       o.Validate("test");
     } catch (const InputError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
-  }();
-  EXPECT_NE(message.find("car_length_m"), std::string::npos) << message;
+  };
+  EXPECT_EQ(message(ScanVisibilityOptions{}), "no error");
+  ScanVisibilityOptions o;
+  o.footprints.car_length_m = -1.0;
+  EXPECT_NE(message(o).find("car_length_m"), std::string::npos) << message(o);
+  o = ScanVisibilityOptions{};
+  o.depth_margin_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(message(o).find("depth_margin_m"), std::string::npos) << message(o);
+  o = ScanVisibilityOptions{};
+  o.detection_margin_m = -0.5;
+  EXPECT_NE(message(o).find("detection_margin_m"), std::string::npos) << message(o);
 }
 
 }  // namespace
