@@ -3,12 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
-
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "lookout/core/input_error.h"
 #include "lookout/core/random.h"
@@ -28,6 +28,21 @@ Detection At(const Eigen::Vector2d& p, ObjectClass c = ObjectClass::kUnknown, in
   d.object_class = c;
   d.sensors = sensors;
   return d;
+}
+
+// The MHT's and the GNN's confirmed tracks after each was given detections(k) at scans
+// k = 0 .. scans - 1, kStep apart.
+template <typename Detections>
+std::pair<std::vector<Track>, std::vector<Track>> RunBothTrackers(int scans,
+                                                                  Detections detections) {
+  MhtTracker mht;
+  GnnTracker gnn;
+  for (int k = 0; k < scans; ++k) {
+    const std::vector<Detection> d = detections(k);
+    mht.Step(k * kStep, d);
+    gnn.Step(k * kStep, d);
+  }
+  return {mht.ConfirmedTracks(), gnn.ConfirmedTracks()};
 }
 
 Eigen::Vector2d Noise(Rng& rng, double sigma_m) {
@@ -378,19 +393,15 @@ TEST(MhtTrackerTest, ATrackBornOfACameraObjectStartsWithItsVelocity) {
 // scan, where the centres alone give the filter a third of it.
 TEST(MhtTrackerTest, AYoungTracksVelocityComesFromItsSeenPoints) {
   const auto run = [](bool seen_points) {
-    MhtTracker mht;
-    GnnTracker gnn;
-    for (int k = 0; k < 3; ++k) {
+    return RunBothTrackers(3, [&](int k) {
       Detection d = At(Eigen::Vector2d(20.0, -20.0 + 0.8 * k + 0.65), ObjectClass::kUnknown, 1);
       d.covariance = Eigen::Vector2d(0.06, 0.48).asDiagonal();  // the depth's variance along y
       if (seen_points) {
         d.seen_point_m = Eigen::Vector2d(20.0, -20.0 + 0.8 * k);
         d.seen_point_covariance = 0.0009 * Eigen::Matrix2d::Identity();
       }
-      mht.Step(k * kStep, {d});
-      gnn.Step(k * kStep, {d});
-    }
-    return std::pair{mht.ConfirmedTracks(), gnn.ConfirmedTracks()};
+      return std::vector<Detection>{d};
+    });
   };
   const auto [mht, gnn] = run(true);
   for (const std::vector<Track>& tracks : {mht, gnn}) {
@@ -413,9 +424,7 @@ TEST(MhtTrackerTest, AYoungTracksVelocityComesFromItsSeenPoints) {
 // with the unknown centre alone it is pulled towards x = 10.9.
 TEST(MhtTrackerTest, ACyclistsTrackMeasuresACyclistsCentreWhenTheCameraLosesIt) {
   const auto run = [](bool class_centres) {
-    MhtTracker mht;
-    GnnTracker gnn;
-    for (int k = 0; k < 20; ++k) {
+    return RunBothTrackers(20, [&](int k) {
       const Eigen::Vector2d centre(10.0, -20.0 + 5.0 * kDt * k);
       Detection d = At(centre, ObjectClass::kCyclist, 2, 0.1);
       if (k >= 10) {
@@ -426,10 +435,8 @@ TEST(MhtTrackerTest, ACyclistsTrackMeasuresACyclistsCentreWhenTheCameraLosesIt) 
               ClassCentre{centre, 0.01 * Eigen::Matrix2d::Identity()};
         }
       }
-      mht.Step(k * kStep, {d});
-      gnn.Step(k * kStep, {d});
-    }
-    return std::pair{mht.ConfirmedTracks(), gnn.ConfirmedTracks()};
+      return std::vector<Detection>{d};
+    });
   };
   const auto [mht, gnn] = run(true);
   for (const std::vector<Track>& tracks : {mht, gnn}) {
