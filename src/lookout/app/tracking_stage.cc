@@ -266,15 +266,8 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
       away = normal;
     }
     const double n = away.norm();
-    const CentreDepth depth = DepthBehindSide(c, side, AlongMotion(o, segment, options), options);
     const Eigen::Vector2d normal = n > 1e-9 ? Eigen::Vector2d(away / n) : Eigen::Vector2d::Zero();
-    const Eigen::Vector2d centre = o.point_m + depth.depth_m * normal;
-    tracking::Detection d;
-    d.position_m = frame.ego_pose * centre;
-    if (lidar_only && DepthInsideBuildings(buildings, d.position_m) > options.building_margin_m) {
-      if (in_buildings) ++*in_buildings;
-      continue;
-    }
+    const std::optional<bool> along = AlongMotion(o, segment, options);
     // The centre `at` behind the seen side, in the tracker's frame.
     const auto centre_at = [&](const CentreDepth& at) {
       const Eigen::Matrix2d in_vehicle =
@@ -285,14 +278,23 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
                                                options.centre_offset_sigma_m *
                                                Eigen::Matrix2d::Identity()};
     };
-    d.covariance = centre_at(depth).covariance;
+    const CentreDepth depth = DepthBehindSide(c, side, along, options);
+    const Eigen::Vector2d centre = o.point_m + depth.depth_m * normal;  // vehicle frame
+    const tracking::ClassCentre own = centre_at(depth);
+    tracking::Detection d;
+    d.position_m = own.position_m;
+    d.covariance = own.covariance;
+    if (lidar_only && DepthInsideBuildings(buildings, d.position_m) > options.building_margin_m) {
+      if (in_buildings) ++*in_buildings;
+      continue;
+    }
     if (c == ObjectClass::kUnknown) {
       // Each box's centre, for a track that knows its class (tracking::MeasurementFor). Not a
       // walker's: measured, the walkers' tracks then took merged or split arcs a radius behind
       // their middle with no depth variance, and the crowd's false tracks rose 34 -> 93.
       for (const ObjectClass k : {ObjectClass::kCyclist, ObjectClass::kCar, ObjectClass::kTruck}) {
         d.class_centres[static_cast<std::size_t>(k)] =
-            centre_at(DepthBehindSide(k, side, AlongMotion(o, segment, options), options));
+            centre_at(DepthBehindSide(k, side, along, options));
       }
     }
     d.object_class = c;

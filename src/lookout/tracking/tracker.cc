@@ -1,6 +1,6 @@
 #include "lookout/tracking/tracker.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <cmath>
 
 #include "lookout/core/chi_square.h"
@@ -9,11 +9,14 @@ namespace lookout::tracking {
 
 namespace {
 
-// Finite, symmetric (to rounding) and positive definite.
+// Finite, symmetric (to rounding) and positive definite. A symmetric 2 x 2 matrix is positive
+// definite when its first pivot and its determinant are (Sylvester), read from the lower
+// triangle as an eigen-solver would: no eigen-decomposition, since MeasurementFor asks this of
+// a class centre for every track and detection the trackers gate.
 bool UsableCovariance(const Eigen::Matrix2d& c) {
   if (!c.allFinite()) return false;
   if (std::abs(c(0, 1) - c(1, 0)) > 1e-9 * (1.0 + c.cwiseAbs().maxCoeff())) return false;
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(c).eigenvalues().minCoeff() > 0.0;
+  return c(0, 0) > 0.0 && c(0, 0) * c(1, 1) - c(1, 0) * c(1, 0) > 0.0;
 }
 
 }  // namespace
