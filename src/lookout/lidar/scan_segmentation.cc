@@ -341,6 +341,12 @@ bool HasDynamicBeam(const ScanCluster& cluster, std::span<const HitClass> classe
                      [&](std::size_t i) { return classes[i] == HitClass::kDynamic; });
 }
 
+bool IsUnmapped(const ScanCluster& cluster, std::span<const HitClass> classes) {
+  if (classes.empty()) return false;
+  return std::all_of(cluster.beams.begin(), cluster.beams.end(),
+                     [&](std::size_t i) { return classes[i] == HitClass::kUnknown; });
+}
+
 LidarObjectFrame DescribeClusters(const LidarScan& scan, std::span<const ScanCluster> clusters,
                                   std::span<const HitClass> classes, const Pose2& ego_pose,
                                   const SegmentationOptions& options) {
@@ -350,7 +356,10 @@ LidarObjectFrame DescribeClusters(const LidarScan& scan, std::span<const ScanClu
   frame.ego_pose = ego_pose;
   std::uint32_t id = 0;
   for (const ScanCluster& cluster : clusters) {
-    if (options.dynamic_only && !HasDynamicBeam(cluster, classes)) continue;
+    if (options.dynamic_only && !HasDynamicBeam(cluster, classes) &&
+        !(options.report_unmapped && IsUnmapped(cluster, classes))) {
+      continue;
+    }
     LidarObject o = DescribeCluster(scan, cluster, classes, options);
     o.id = ++id;
     frame.objects.push_back(std::move(o));

@@ -67,6 +67,15 @@ struct SegmentationOptions {
   double min_box_side_m = 0.7;
   // Report only the dynamic objects (the paper's list, IV.D); false keeps static ones too.
   bool dynamic_only = true;
+  // With dynamic_only, report the unmapped objects too (every return unknown: on cells the map
+  // has not seen, or not often enough to say), not dynamic (LidarObject::dynamic false).
+  // Why: the map cannot yet say whether they move, but the camera can say what they are. At
+  // t = 0 the map is empty and every return unknown; the crowd's walkers the camera saw then
+  // were camera-only detections, confirmed after three updates where a pair of both sensors is
+  // confirmed after one (tracking/track_management.h). Beyond the paper, whose list holds
+  // dynamic objects only. Alone they make no track: the tracking stage leaves out a lidar-only
+  // object that is not dynamic (app/tracking_stage.h).
+  bool report_unmapped = true;
   // The longest side an object is taken to have (a car's length): a side hidden in part by
   // something nearer, or running out of the field of view, goes on at most this far less
   // what is seen. Bounds the point's variance along the side.
@@ -97,6 +106,9 @@ std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOp
 
 // Whether any beam of `cluster` is dynamic in `classes` (empty: none is).
 bool HasDynamicBeam(const ScanCluster& cluster, std::span<const HitClass> classes);
+
+// Whether every beam of `cluster` is unknown in `classes` (false for empty `classes`).
+bool IsUnmapped(const ScanCluster& cluster, std::span<const HitClass> classes);
 
 // The objects of `clusters` of `scan` (ClusterScan), described as above.
 LidarObjectFrame DescribeClusters(const LidarScan& scan, std::span<const ScanCluster> clusters,

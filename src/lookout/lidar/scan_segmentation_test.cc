@@ -210,6 +210,39 @@ TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
   EXPECT_NEAR(listed.objects[0].point_m.x(), 7.75, 0.02);
 }
 
+TEST(ScanSegmentation, AnUnmappedObjectIsListedAndNotDynamic) {
+  const LidarScan scan = CastScan(SegmentationScene());
+  std::vector<HitClass> classes(scan.ranges_m.size(), HitClass::kNoReturn);
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (std::isfinite(scan.ranges_m[i])) classes[i] = HitClass::kStatic;
+  }
+  // Every return on the car (x 7.75 to 12.25, y 2.1 to 3.9) unknown to the map.
+  std::size_t on_car = 0, car_beam = 0;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    const double r = static_cast<double>(scan.ranges_m[i]);
+    if (!std::isfinite(r)) continue;
+    const Eigen::Vector2d p =
+        r * Eigen::Vector2d(std::cos(scan.BeamAngle(i)), std::sin(scan.BeamAngle(i)));
+    if (p.x() > 7.7 && p.x() < 12.3 && p.y() > 2.0 && p.y() < 4.0) {
+      classes[i] = HitClass::kUnknown;
+      car_beam = i;
+      ++on_car;
+    }
+  }
+  ASSERT_GE(on_car, 10u);
+  const LidarObjectFrame listed = SegmentScan(scan, classes, Pose2(), SegmentationOptions{}, 0.1);
+  ASSERT_EQ(listed.objects.size(), 1u);
+  EXPECT_FALSE(listed.objects[0].dynamic);
+  EXPECT_NEAR(listed.objects[0].point_m.x(), 7.75, 0.02);
+  // One return the map knows (static) and the car is mapped: not listed.
+  classes[car_beam] = HitClass::kStatic;
+  EXPECT_TRUE(SegmentScan(scan, classes, Pose2(), SegmentationOptions{}, 0.1).objects.empty());
+  classes[car_beam] = HitClass::kUnknown;
+  SegmentationOptions paper;
+  paper.report_unmapped = false;
+  EXPECT_TRUE(SegmentScan(scan, classes, Pose2(), paper, 0.1).objects.empty());
+}
+
 // A wall facing the lidar at distance d with a step of `step` metres in depth at y = 0.
 LidarScan StepScan(double d, double step) {
   LidarScan scan;
