@@ -230,13 +230,19 @@ bool InCameraView(const Pose2& camera_mount, const Eigen::Vector2d& vehicle_poin
 
 }  // namespace
 
-bool IsRoadUser(const tracking::Track& t, const DetectionOptions& options) {
-  if (t.existence_log_odds > 0.0) return true;
+bool ShowsMotion(const tracking::Track& t, const DetectionOptions& options,
+                 bool moved_when_detected) {
+  if (t.coasting && t.misses == 0) return moved_when_detected;
   const Eigen::Vector2d v = t.Velocity();
   if (v.norm() < options.static_speed_mps) return false;
   const Eigen::Matrix2d pv = t.state.cov.block<2, 2>(2, 2);
   if (!pv.allFinite() || pv.determinant() <= 0.0) return false;
   return v.dot(pv.inverse() * v) > ChiSquareQuantile(options.moving_probability, 2.0);
+}
+
+bool IsRoadUser(const tracking::Track& t, const DetectionOptions& options,
+                bool moved_when_detected) {
+  return t.existence_log_odds > 0.0 || ShowsMotion(t, options, moved_when_detected);
 }
 
 std::vector<tracking::Detection> DetectionsFromFusedObjects(
@@ -366,14 +372,23 @@ void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
     dropped_reported_ = tracker_->dropped_detections();
   }
   last_stamp_ = frame.stamp;
-  const auto road_users = [&](std::vector<tracking::Track> tracks) {
+  // Confirmed tracks come in increasing id order, so the ids that move stay sorted.
+  const auto road_users = [&](std::vector<tracking::Track> tracks,
+                              std::vector<std::uint32_t>& moving_ids) {
+    std::vector<std::uint32_t> moving_now;
     std::erase_if(tracks, [&](const tracking::Track& t) {
-      return !IsRoadUser(t, options_.detections);
+      const bool moved = std::binary_search(moving_ids.begin(), moving_ids.end(), t.id);
+      const bool moves = ShowsMotion(t, options_.detections, moved);
+      if (moves) moving_now.push_back(t.id);
+      return !(moves || t.existence_log_odds > 0.0);
     });
+    moving_ids = std::move(moving_now);
     return tracks;
   };
-  tracks_ = road_users(tracker_->ConfirmedTracks());
-  if (baseline_) baseline_tracks_ = road_users(baseline_->ConfirmedTracks());
+  tracks_ = road_users(tracker_->ConfirmedTracks(), moving_ids_);
+  if (baseline_) {
+    baseline_tracks_ = road_users(baseline_->ConfirmedTracks(), baseline_moving_ids_);
+  }
 }
 
 }  // namespace lookout::app

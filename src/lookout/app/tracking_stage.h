@@ -149,8 +149,23 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
     const std::optional<Pose2>& camera_mount = std::nullopt,
     const BuildingOutlines& buildings = {}, std::int64_t* in_buildings = nullptr);
 
-// Whether a confirmed track is output as a road user (above). Pure.
-bool IsRoadUser(const tracking::Track& track, const DetectionOptions& options);
+// Whether a confirmed track moves: its speed at least static_speed_mps and its velocity
+// outside the chi-square gate of zero of moving_probability; or, hidden since its last
+// detection (coasting without a miss: tracking/track_management.h), whether it moved at the
+// scan before (`moved_when_detected`, the caller's memory). Pure.
+// Why the second: a hidden track's prediction says nothing new of whether the object moves,
+// only how sure the prediction is, and its velocity covariance grows at every scan. A lidar-only
+// walker hidden behind a building (crowd) coasted within 0.4 m of it for 1.3 s and within 2 m
+// for 4.6 s, but its track left the output at the scan after it was hidden. A track missed
+// where the sensors could see it is judged afresh: its silence is evidence (on the leg-tracker
+// bag, clutter's tracks kept by their last motion were 7 more false frames).
+bool ShowsMotion(const tracking::Track& track, const DetectionOptions& options,
+                 bool moved_when_detected);
+
+// Whether a confirmed track is output as a road user (above): the camera's evidence for it, or
+// its motion (ShowsMotion). Pure.
+bool IsRoadUser(const tracking::Track& track, const DetectionOptions& options,
+                bool moved_when_detected = false);
 
 // The camera's evidence per camera track id: its frames, and the sum of the log class
 // probabilities of its frames. Forgets an id not seen for `forget_after_s`.
@@ -231,6 +246,8 @@ class TrackingStage {
   std::unique_ptr<tracking::Tracker> tracker_;
   std::unique_ptr<tracking::Tracker> baseline_;
   std::vector<tracking::Track> tracks_, baseline_tracks_;
+  // The ids of the tracks that showed motion at the last scan (ShowsMotion), increasing.
+  std::vector<std::uint32_t> moving_ids_, baseline_moving_ids_;
   std::vector<tracking::Detection> detections_;
   CameraTrackHistory camera_history_;
   std::optional<TimeNs> last_stamp_;

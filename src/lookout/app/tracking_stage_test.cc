@@ -329,6 +329,26 @@ TEST(RoadUserTest, TracksWithoutTheCameraMustMove) {
   EXPECT_TRUE(IsRoadUser(TrackWith({0.0, 0.0}, 0.1, 2.9), o)) << "a walker the camera sees waiting";
 }
 
+// A hidden track keeps the motion it showed when it was last detected: its prediction's
+// growing velocity covariance is no evidence that it stopped. A missed one is judged afresh.
+TEST(RoadUserTest, AHiddenTrackKeepsTheMotionItShowed) {
+  const DetectionOptions o;
+  tracking::Track hidden = TrackWith({1.3, 0.0}, 1.0, 0.0);  // not surely moving by itself
+  hidden.coasting = true;
+  EXPECT_FALSE(ShowsMotion(hidden, o, false));
+  EXPECT_TRUE(ShowsMotion(hidden, o, true)) << "moved when last detected";
+  EXPECT_TRUE(IsRoadUser(hidden, o, true));
+  tracking::Track missed = hidden;
+  missed.misses = 1;
+  EXPECT_FALSE(ShowsMotion(missed, o, true)) << "missed where it could be seen";
+  tracking::Track detected = hidden;
+  detected.coasting = false;
+  EXPECT_FALSE(ShowsMotion(detected, o, true)) << "a detection is judged afresh";
+  tracking::Track standing = TrackWith({0.2, 0.1}, 0.1, 0.0);
+  standing.coasting = true;
+  EXPECT_FALSE(ShowsMotion(standing, o, false));
+}
+
 // One frame in which the camera calls its pedestrian a car does not change the class.
 TEST(CameraTrackHistoryTest, OneConfusedFrameKeepsTheClassOfTheCamerasTrack) {
   CameraTrackHistory history;
