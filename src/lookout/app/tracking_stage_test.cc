@@ -89,6 +89,32 @@ TEST(DetectionsFromFusedObjectsTest, TheObjectsMotionTellsWhichSideIsSeen) {
   EXPECT_NEAR(depth({0.0, 0.8}, 0.01), 2.25, 1e-12);  // slower than heading_min_speed_mps
 }
 
+// Where the motion cannot tell which side of a box is seen, the length decides the depth, and
+// the covariance along the side's normal says the other depth is as likely: the two-point
+// mixture's second moment about the chosen one, ((4.5 - 1.8) / 2)^2 / 2 for a car. Where the
+// motion tells, no such term.
+TEST(DetectionsFromFusedObjectsTest, ADepthTheMotionCannotTellIsUncertain) {
+  const DetectionOptions options;
+  const auto variance_along_normal = [&](Eigen::Vector2d v) {
+    fusion::FusedObject o = Object(ObjectClass::kCar, {20.0, -1.35}, {20.0, 1.35});
+    o.velocity_mps = v;
+    o.velocity_covariance = 0.25 * Eigen::Matrix2d::Identity();
+    const auto d = DetectionsFromFusedObjects(Frame(0, {o}), options);
+    EXPECT_EQ(d.size(), 1u);
+    return d.empty() ? 0.0 : d[0].covariance(0, 0);
+  };
+  const double known = variance_along_normal({0.0, 8.0});
+  const double unknown = variance_along_normal({0.0, 0.0});
+  EXPECT_NEAR(unknown - known, 0.5 * 1.35 * 1.35, 1e-9);
+  // Across the normal (along the side) nothing changes.
+  fusion::FusedObject still = Object(ObjectClass::kCar, {20.0, -1.35}, {20.0, 1.35});
+  fusion::FusedObject moving = still;
+  moving.velocity_mps = Eigen::Vector2d(0.0, 8.0);
+  moving.velocity_covariance = 0.25 * Eigen::Matrix2d::Identity();
+  EXPECT_NEAR(DetectionsFromFusedObjects(Frame(0, {still}), options)[0].covariance(1, 1),
+              DetectionsFromFusedObjects(Frame(0, {moving}), options)[0].covariance(1, 1), 1e-12);
+}
+
 // A lidar-only object of unknown class may be a walker (centre on its side) or a car (half a
 // box behind): its centre is half the car's depth behind, with the variance of a uniform depth
 // along the side's normal, and across it the covariance it had.
@@ -163,7 +189,11 @@ TEST(DetectionsFromFusedObjectsTest, AnUnknownObjectHoldsEachBoxsCentre) {
     const double depth = c == ObjectClass::kTruck ? box.length_m : box.width_m;
     EXPECT_NEAR(centre->position_m.x(), 20.0 + 0.5 * depth, 1e-12);
     EXPECT_NEAR(centre->position_m.y(), 0.0, 1e-12);
-    EXPECT_TRUE(centre->covariance.isApprox((0.01 + offset) * Eigen::Matrix2d::Identity()));
+    // No velocity to tell which side is seen: the other depth is as likely, along the normal.
+    const double half_gap = 0.5 * (box.length_m - box.width_m);
+    Eigen::Matrix2d expected = (0.01 + offset) * Eigen::Matrix2d::Identity();
+    expected(0, 0) += 0.5 * half_gap * half_gap;
+    EXPECT_TRUE(centre->covariance.isApprox(expected)) << centre->covariance;
   }
   EXPECT_FALSE(d[0].class_centres[static_cast<std::size_t>(ObjectClass::kPedestrian)]);
   const auto car = DetectionsFromFusedObjects(
