@@ -385,9 +385,8 @@ void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
     std::vector<std::uint32_t> moving_now;
     std::erase_if(tracks, [&](const tracking::Track& t) {
       const bool moved = std::binary_search(moving_ids.begin(), moving_ids.end(), t.id);
-      const bool moves = ShowsMotion(t, options_.detections, moved);
-      if (moves) moving_now.push_back(t.id);
-      return !(moves || t.existence_log_odds > 0.0);
+      if (ShowsMotion(t, options_.detections, moved)) moving_now.push_back(t.id);
+      return !IsRoadUser(t, options_.detections, moved);
     });
     moving_ids = std::move(moving_now);
     return tracks;
