@@ -36,6 +36,8 @@
 //                  on each axis, so fusion and tracking give it no weight;
 //   dynamic        any point dynamic (the paper's rule);
 //   class          unknown (a scan's outline does not tell a pedestrian from a pole).
+// Listed: the dynamic objects (the paper's list) and those the map has not seen yet
+// (SegmentationOptions::report_unmapped), or every object (dynamic_only false).
 
 #include <cstdint>
 #include <span>
