@@ -229,8 +229,8 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     f.front_start_m = l.front_start_m;
     f.front_end_m = l.front_end_m;
     // Where the camera paired the object, the lidar point's covariance is the model's with the
-    // camera's class (a segmentation object has none of its own). An object the camera did not
-    // see keeps its source's (the grid's own class would be the one to use: not measured yet).
+    // camera's class and box (a segmentation object has none of its own). An object the camera did
+    // not see keeps its source's (the grid's own class would be the one to use: not measured yet).
     const auto paired = pairing.stereo_of_lidar[j];
     LidarObject& as_fused = result.lidar.objects.emplace_back(l);
     if (fragment[j]) {
@@ -242,9 +242,10 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       continue;
     }
     if (paired) {
-      as_fused.point_covariance = LidarPointCovariance(l, stereo[*paired].object_class,
-                                                       lidar.mount.translation,
-                                                       options.lidar_point);
+      const stereo::StereoPoint& s = stereo[*paired];
+      as_fused.point_covariance = LidarPointCovariance(
+          l, PairedBody{s.object_class, s.footprint.length_m, s.footprint.width_m},
+          lidar.mount.translation, options.lidar_point);
     }
     if (const auto i = paired) {
       const stereo::StereoPoint& s = stereo[*i];

@@ -31,6 +31,10 @@ void LidarPointModelOptions::Validate() const {
   RequirePointModel(positive(beam_spacing_rad), "beam_spacing_rad", "must be finite and > 0");
   RequirePointModel(std::isfinite(grid_cell_size_m) && grid_cell_size_m >= 0.0, "grid_cell_size_m",
                     "must be finite and >= 0");
+  RequirePointModel(std::isfinite(max_round_diameter_m) && max_round_diameter_m >= 0.0,
+                    "max_round_diameter_m", "must be finite and >= 0");
+  RequirePointModel(std::isfinite(round_square_tolerance_m) && round_square_tolerance_m >= 0.0,
+                    "round_square_tolerance_m", "must be finite and >= 0");
   const auto footprint = footprints.FirstInvalidField();
   RequirePointModel(!footprint, footprint.value_or(""), "must be finite and > 0");
 }
@@ -74,17 +78,41 @@ ObjectClass MostLikelyLidarClass(const LidarObject& object) {
   return kAllObjectClasses[best];
 }
 
+std::optional<double> RoundBodyRadius(const PairedBody& body,
+                                      const LidarPointModelOptions& options) {
+  const double larger = std::max(body.length_m, body.width_m);
+  const bool boxed = std::isfinite(larger) && larger > 0.0;
+  if (!boxed) {
+    if (body.object_class != ObjectClass::kPedestrian) return std::nullopt;
+    return options.footprints.pedestrian_radius_m;
+  }
+  // The shape decides: a car the camera calls a pedestrian is no circle either.
+  if (larger > options.max_round_diameter_m) return std::nullopt;
+  if (body.object_class != ObjectClass::kPedestrian &&
+      std::abs(body.length_m - body.width_m) > options.round_square_tolerance_m) {
+    return std::nullopt;
+  }
+  return 0.5 * larger;
+}
+
 Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_class,
                               const Vector2d& lidar_origin_m,
                               const LidarPointModelOptions& options) {
+  return LidarPointCovariance(object, PairedBody{object_class, 0.0, 0.0}, lidar_origin_m, options);
+}
+
+Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
+                              const Vector2d& lidar_origin_m,
+                              const LidarPointModelOptions& options) {
+  const ObjectClass object_class = body.object_class;
   Matrix2d covariance = object.point_covariance;
   const Vector2d ray = object.point_m - lidar_origin_m;
   const double range = ray.norm();
   if (!(range > 0.0) || !std::isfinite(range)) return covariance;
-  if (options.round_body && object_class == ObjectClass::kPedestrian) {
+  if (const std::optional<double> radius = RoundBodyRadius(body, options);
+      options.round_body && radius) {
     covariance += RoundBodyCovariance(
-        options.footprints.pedestrian_radius_m, ray,
-        object.cell_count == 0 ? kSegmentationRoundBodyDepth : kGridRoundBodyDepth);
+        *radius, ray, object.cell_count == 0 ? kSegmentationRoundBodyDepth : kGridRoundBodyDepth);
   }
   // The segmentation bounds each end of its segment from the scan itself (the next beam past
   // it, or the shadow hiding it); the grid's ends are cells at its extreme bearings, bounded

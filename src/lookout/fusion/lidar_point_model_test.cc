@@ -211,6 +211,42 @@ TEST(LidarPointModelTest, TermsByClassAndSource) {
             1e-15);
 }
 
+// The shape decides what is round: a walker the camera calls a car (its box the circle's 2r
+// square) keeps the round body with its own radius; a car-sized box is no circle whatever the
+// class; a pedestrian known by its class alone has the footprint's radius.
+TEST(LidarPointModelTest, ARoundBodyIsKnownByItsBoxWhateverItsClass) {
+  const LidarPointModelOptions options;
+  EXPECT_EQ(RoundBodyRadius({ObjectClass::kPedestrian, 0.0, 0.0}, options),
+            options.footprints.pedestrian_radius_m);
+  EXPECT_EQ(RoundBodyRadius({ObjectClass::kPedestrian, 0.44, 0.44}, options), 0.22);
+  EXPECT_EQ(RoundBodyRadius({ObjectClass::kPedestrian, 0.6, 0.4}, options), 0.3);
+  EXPECT_EQ(RoundBodyRadius({ObjectClass::kCar, 0.6, 0.6}, options), 0.3);
+  EXPECT_EQ(RoundBodyRadius({ObjectClass::kPole, 0.2, 0.2}, options), 0.1);
+  EXPECT_EQ(RoundBodyRadius({ObjectClass::kUnknown, 0.7, 0.7}, options), 0.35);
+  EXPECT_FALSE(RoundBodyRadius({ObjectClass::kCar, 0.0, 0.0}, options));
+  EXPECT_FALSE(RoundBodyRadius({ObjectClass::kCar, 0.6, 0.4}, options));  // not a square
+  EXPECT_FALSE(RoundBodyRadius({ObjectClass::kCar, 4.5, 1.8}, options));
+  EXPECT_FALSE(RoundBodyRadius({ObjectClass::kPedestrian, 4.5, 1.8}, options));
+  EXPECT_FALSE(RoundBodyRadius({ObjectClass::kCyclist, 1.8, 0.6}, options));
+  EXPECT_FALSE(RoundBodyRadius({ObjectClass::kTruck, 1.0, 1.0}, options));  // over 0.8 m
+
+  const Vector2d lidar(2.2, 0.0);
+  const Vector2d point(12.2, 3.0);
+  const LidarObject segment = SegmentObject(point, Vector2d(0.0, 0.25));
+  const Matrix2d misnamed =
+      LidarPointCovariance(segment, PairedBody{ObjectClass::kCar, 0.6, 0.6}, lidar, options);
+  EXPECT_LT((misnamed - segment.point_covariance -
+             RoundBodyCovariance(0.3, point - lidar, kSegmentationRoundBodyDepth))
+                .norm(),
+            1e-15);
+  EXPECT_EQ(LidarPointCovariance(segment, PairedBody{ObjectClass::kCar, 4.5, 1.8}, lidar, options),
+            segment.point_covariance);
+  LidarPointModelOptions off;
+  off.round_body = false;
+  EXPECT_EQ(LidarPointCovariance(segment, PairedBody{ObjectClass::kCar, 0.6, 0.6}, lidar, off),
+            segment.point_covariance);
+}
+
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
   LidarObject o;
   o.class_pmf = {0.2, 0.5, 0.1, 0.2, 0.0, 0.0};
@@ -228,6 +264,12 @@ TEST(LidarPointModelTest, ValidateNamesTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("pedestrian_radius_m"), std::string::npos);
   }
+  LidarPointModelOptions square;
+  square.round_square_tolerance_m = -0.1;
+  EXPECT_THROW(square.Validate(), std::invalid_argument);
+  LidarPointModelOptions diameter;
+  diameter.max_round_diameter_m = std::nan("");
+  EXPECT_THROW(diameter.Validate(), std::invalid_argument);
 }
 
 }  // namespace
