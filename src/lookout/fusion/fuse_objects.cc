@@ -243,9 +243,11 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     }
     if (paired) {
       const stereo::StereoPoint& s = stereo[*paired];
-      as_fused.point_covariance = LidarPointCovariance(
-          l, PairedBody{s.object_class, s.footprint.length_m, s.footprint.width_m},
-          lidar.mount.translation, options.lidar_point);
+      as_fused.point_covariance =
+          LidarPointCovariance(l,
+                               PairedBody{s.object_class, s.footprint.length_m, s.footprint.width_m,
+                                          s.front.end_m - s.front.start_m},
+                               lidar.mount.translation, options.lidar_point);
     }
     if (const auto i = paired) {
       const stereo::StereoPoint& s = stereo[*i];

@@ -35,6 +35,8 @@ void LidarPointModelOptions::Validate() const {
                     "max_round_diameter_m", "must be finite and >= 0");
   RequirePointModel(std::isfinite(round_square_tolerance_m) && round_square_tolerance_m >= 0.0,
                     "round_square_tolerance_m", "must be finite and >= 0");
+  RequirePointModel(camera_side_max_angle_rad >= 0.0 && camera_side_max_angle_rad <= 0.5 * kPi,
+                    "camera_side_max_angle_rad", "must be in [0, pi/2]");
   const auto footprint = footprints.FirstInvalidField();
   RequirePointModel(!footprint, footprint.value_or(""), "must be finite and > 0");
 }
@@ -109,20 +111,30 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
   const Vector2d ray = object.point_m - lidar_origin_m;
   const double range = ray.norm();
   if (!(range > 0.0) || !std::isfinite(range)) return covariance;
-  if (const std::optional<double> radius = RoundBodyRadius(body, options);
-      options.round_body && radius) {
+  const std::optional<double> radius = RoundBodyRadius(body, options);
+  const bool radius_term = options.round_body && radius.has_value();
+  if (radius_term) {
     covariance += RoundBodyCovariance(
         *radius, ray, object.cell_count == 0 ? kSegmentationRoundBodyDepth : kGridRoundBodyDepth);
   }
-  // The segmentation bounds each end of its segment from the scan itself (the next beam past
-  // it, or the shadow hiding it); the grid's ends are cells at its extreme bearings, bounded
-  // by nothing the grid reports.
-  if (!options.grid_extent || object.cell_count == 0) return covariance;
   const Vector2d segment = object.front_end_m - object.front_start_m;
   const double visible = segment.norm();
   const Vector2d beam = ray / range;
   // The side's direction; a segment of one cell runs across the ray.
   const Vector2d u = visible > 1e-9 ? Vector2d(segment / visible) : Vector2d(-beam.y(), beam.x());
+  // The segmentation bounds each end of its segment from the scan itself (the next beam past
+  // it, or the shadow hiding it); the grid's ends are cells at its extreme bearings, bounded
+  // by nothing the grid reports.
+  if (!options.grid_extent || object.cell_count == 0) {
+    // The scan's bounds can be wrong where the camera measures the side longer than the
+    // segment: the rest of it is hidden at one end or the other.
+    const double side = body.facing_side_m.norm();
+    if (options.camera_side && !radius_term && side > 0.0 &&
+        std::abs(u.dot(body.facing_side_m)) >= side * std::cos(options.camera_side_max_angle_rad)) {
+      covariance += HiddenExtentVariance(visible, side) * u * u.transpose();
+    }
+    return covariance;
+  }
   const double cos_incidence = std::abs(Cross(beam, u));
   const double spacing =
       range * options.beam_spacing_rad / std::max(cos_incidence, kMinCosineOfIncidence);

@@ -11,10 +11,12 @@
 //   - the hidden extent: a grid object seen over less than its class's typical side has the
 //     rest hidden at one end or the other (the segmentation measures this from the scan);
 //   - the round body: a pedestrian is a circle to the laser, whose visible arc's middle is not
-//     the middle of the 2r square side the truth and the camera take, along the heading.
-// FuseObjects applies it to the objects the camera paired, with the camera's class (it
-// classifies from appearance; a segmentation object has no class of its own); an unknown
-// class adds no class term.
+//     the middle of the 2r square side the truth and the camera take, along the heading;
+//   - the camera's side: a segment shorter than the side the camera's box turns to the lidar
+//     has the rest of that side hidden at one end or the other, wherever the scan put its ends.
+// FuseObjects applies it to the objects the camera paired, with the camera's class and box (it
+// classifies from appearance and measures the size; a segmentation object has no class of its
+// own); an unknown class adds no class term.
 
 #include <Eigen/Core>
 #include <optional>
@@ -35,6 +37,15 @@ struct LidarPointModelOptions {
   // cyclist's tracking IDF1 (grid objects) falls from 0.95 to 0.64 (docs/fusion.md, "The lidar
   // point's covariance").
   bool grid_extent = false;
+  // The side the camera measures, for a body that is not round: a segment shorter than the
+  // camera box's side facing the lidar has the rest of that side hidden at either end, the
+  // hidden extent's spread with the camera's side length (HiddenExtentVariance). For the
+  // segmentation's objects, whose ends the scan bounds, and the grid's while grid_extent is
+  // off.
+  bool camera_side = true;
+  // ...when the segment runs along that side: within this angle of it. A segment across it is
+  // another side (a corner view), whose middle the camera's length does not describe.
+  double camera_side_max_angle_rad = 0.5;
   // The scanner's angle between neighbouring beams (the simulator's 0.25 deg) and the grid's
   // cell size (GridOptions::cell_size_m): a LidarObject carries neither.
   double beam_spacing_rad = 0.25 * 3.14159265358979323846 / 180.0;
@@ -91,6 +102,9 @@ struct PairedBody {
   ObjectClass object_class = ObjectClass::kUnknown;
   double length_m = 0.0;
   double width_m = 0.0;
+  // The box's side that faces the lidar (the camera's front segment, by the truth's rule),
+  // from one end to the other; zero when unknown.
+  Eigen::Vector2d facing_side_m = Eigen::Vector2d::Zero();
 };
 
 // The radius of the body if it is round to the laser, nullopt if not: a pedestrian whose box

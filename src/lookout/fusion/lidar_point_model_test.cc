@@ -247,6 +247,40 @@ TEST(LidarPointModelTest, ARoundBodyIsKnownByItsBoxWhateverItsClass) {
             segment.point_covariance);
 }
 
+// The camera's side: a segment 0.9 m long on the 1.8 m end the camera measures facing the
+// lidar has the other 0.9 m hidden at either end (0.9^2 / 12 along the segment); a segment
+// across the camera's side (another side seen), a whole side, a round body or the switch off
+// add nothing.
+TEST(LidarPointModelTest, ASideTheCameraMeasuresLongerIsPartlyHidden) {
+  const LidarPointModelOptions options;
+  const Vector2d lidar(2.2, 0.0);
+  const Vector2d point(22.2, 0.0);  // ahead: the end runs along y
+  const LidarObject segment = SegmentObject(point, Vector2d(0.0, 0.45));
+  const PairedBody car{ObjectClass::kCar, 4.5, 1.8, Vector2d(0.0, 1.8)};
+  const Matrix2d c = LidarPointCovariance(segment, car, lidar, options);
+  EXPECT_NEAR(c(1, 1) - segment.point_covariance(1, 1), 0.9 * 0.9 / 12.0, 1e-12);
+  EXPECT_NEAR(c(0, 0), segment.point_covariance(0, 0), 1e-15);
+  EXPECT_NEAR(c(0, 1), 0.0, 1e-15);
+  // The camera's side in the other direction along the same line: the same.
+  EXPECT_EQ(LidarPointCovariance(segment, {ObjectClass::kCar, 4.5, 1.8, Vector2d(0.0, -1.8)}, lidar,
+                                 options),
+            c);
+  EXPECT_EQ(LidarPointCovariance(segment, {ObjectClass::kCar, 4.5, 1.8, Vector2d(4.5, 0.0)}, lidar,
+                                 options),
+            segment.point_covariance);
+  const LidarObject whole = SegmentObject(point, Vector2d(0.0, 0.9));
+  EXPECT_EQ(LidarPointCovariance(whole, car, lidar, options), whole.point_covariance);
+  const Matrix2d round = LidarPointCovariance(
+      segment, {ObjectClass::kCar, 0.6, 0.6, Vector2d(0.0, 1.8)}, lidar, options);
+  EXPECT_LT((round - segment.point_covariance -
+             RoundBodyCovariance(0.3, point - lidar, kSegmentationRoundBodyDepth))
+                .norm(),
+            1e-15);
+  LidarPointModelOptions off;
+  off.camera_side = false;
+  EXPECT_EQ(LidarPointCovariance(segment, car, lidar, off), segment.point_covariance);
+}
+
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
   LidarObject o;
   o.class_pmf = {0.2, 0.5, 0.1, 0.2, 0.0, 0.0};
@@ -267,6 +301,9 @@ TEST(LidarPointModelTest, ValidateNamesTheField) {
   LidarPointModelOptions square;
   square.round_square_tolerance_m = -0.1;
   EXPECT_THROW(square.Validate(), std::invalid_argument);
+  LidarPointModelOptions angle;
+  angle.camera_side_max_angle_rad = 2.0;
+  EXPECT_THROW(angle.Validate(), std::invalid_argument);
   LidarPointModelOptions diameter;
   diameter.max_round_diameter_m = std::nan("");
   EXPECT_THROW(diameter.Validate(), std::invalid_argument);
