@@ -122,7 +122,8 @@ std::optional<double> RoundBodyRadius(const PairedBody& body,
 // `body`, seen from `lidar_origin_m` (vehicle frame, as the object): the round body for round
 // bodies (RoundBodyRadius), from either source; the ends' resolution and the hidden extent, by
 // the body's class, for the grid's objects (cell_count > 0), whose ends the scan does not
-// bound; each as `options` switches it. An object the terms do not apply to: its own covariance.
+// bound; else, for a body that is not round, the camera's side; each as `options` switches it.
+// An object the terms do not apply to: its own covariance.
 Eigen::Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
                                      const Eigen::Vector2d& lidar_origin_m,
                                      const LidarPointModelOptions& options);
