@@ -259,11 +259,15 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         f.front_end_m = s.front.end_m;
         f.footprint_pair = true;
       } else {
-        const Gaussian2 position =
-            FuseGaussians(Gaussian2{as_fused.point_m, as_fused.point_covariance},
-                          Gaussian2{stereo_points[*i].point_m, stereo_points[*i].covariance});
+        const Gaussian2 lidar_point{as_fused.point_m, as_fused.point_covariance};
+        const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};
+        const Gaussian2 position = FuseGaussians(lidar_point, stereo_point);
         f.point_m = position.mean;
         f.point_covariance = position.covariance;
+        if (options.disagreement_probability < 1.0) {
+          f.point_covariance *= DisagreementScale(
+              lidar_point, stereo_point, ChiSquareQuantile(options.disagreement_probability, 2.0));
+        }
       }
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);
       f.velocity_mps = velocity.mean;

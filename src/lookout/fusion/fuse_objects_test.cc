@@ -6,6 +6,7 @@
 #include <limits>
 #include <variant>
 
+#include "lookout/core/chi_square.h"
 #include "lookout/fusion/fusion_test_support.h"
 #include "lookout/fusion/gaussian_fusion.h"
 #include "lookout/fusion/lidar_point_model.h"
@@ -89,6 +90,31 @@ TEST(FuseObjectsTest, PairIsFusedByCovariances) {
   EXPECT_TRUE(f.dynamic);
   EXPECT_EQ(result.frame.stamp, lidar.stamp);
   EXPECT_EQ(result.frame.ego_pose.yaw, 0.1);
+}
+
+// A pair inside the gate (which allows point_definition_sigma_m) whose points disagree beyond
+// the 99 % quantile under their own covariances: 1.1 m apart along x against 0.1 m^2, d^2
+// about 12. The fused point stays the information-weighted mean, its covariance is scaled by
+// d^2 / quantile; with the option off it is FuseGaussians' alone.
+TEST(FuseObjectsTest, APairThatDisagreesHoldsItsDisagreement) {
+  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(16.1, 0.1))});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  FusionOptions options;
+  options.lidar_point.round_body = false;
+  const Gaussian2 l{lidar.objects[0].point_m, lidar.objects[0].point_covariance};
+  const Gaussian2 s{stereo[0].point.point_m, stereo[0].point.covariance};
+  const double quantile = ChiSquareQuantile(options.disagreement_probability, 2.0);
+  const double scale = DisagreementScale(l, s, quantile);
+  ASSERT_GT(scale, 1.2);
+  const Gaussian2 expected = FuseGaussians(l, s);
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(result.pairs, 1u);
+  const FusedObject& f = result.frame.objects[0];
+  EXPECT_LT((f.point_m - expected.mean).norm(), 1e-9);
+  EXPECT_LT((f.point_covariance - scale * expected.covariance).norm(), 1e-9);
+  options.disagreement_probability = 1.0;
+  const FusedObject& off = FuseObjects(lidar, stereo, options).frame.objects[0];
+  EXPECT_LT((off.point_covariance - expected.covariance).norm(), 1e-9);
 }
 
 // The lidar point's covariance is the model's (lidar_point_model.h) with the camera's class

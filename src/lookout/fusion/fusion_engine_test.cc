@@ -136,6 +136,14 @@ TEST(FusionEngineTest, InvalidOptionsNameTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("gate_probability"), std::string::npos);
   }
+  FusionOptions disagreement;
+  disagreement.disagreement_probability = 0.0;
+  try {
+    FusionEngine engine(disagreement);
+    FAIL() << "accepted disagreement_probability = 0";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("disagreement_probability"), std::string::npos);
+  }
 }
 
 // Same input, same bytes out.

@@ -19,6 +19,8 @@ void FusionOptions::Validate() const {
   Require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability",
           "must be in (0, 1)");
   Require(point_definition_sigma_m >= 0.0, "point_definition_sigma_m", "must be >= 0");
+  Require(disagreement_probability > 0.0 && disagreement_probability <= 1.0,
+          "disagreement_probability", "must be in (0, 1]");
   Require(piece_gap_m >= 0.0 && std::isfinite(piece_gap_m), "piece_gap_m",
           "must be finite and >= 0");
   Require(max_stereo_age_s >= 0.0, "max_stereo_age_s", "must be >= 0");

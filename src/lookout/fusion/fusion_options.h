@@ -30,6 +30,12 @@ struct FusionOptions {
   // disagreement (m, each axis) is allowed for in the gate. Not in the fused covariance.
   double point_definition_sigma_m = 0.25;
 
+  // A pair whose two points disagree beyond the chi-square (2 dof) quantile of
+  // disagreement_probability under their own covariances (no point_definition_sigma_m) has its
+  // fused covariance scaled by d^2 / quantile (DisagreementScale, gaussian_fusion.h): the fused
+  // point stays, its covariance holds the disagreement. 1: off.
+  double disagreement_probability = 0.99;
+
   // Pieces (fuse_objects.h): an unpaired dynamic lidar object whose front segment comes within
   // this distance of another dynamic lidar object's (a longer one, or one the camera paired) is
   // a piece of the same body, left out. 0: off. 0.5 m: fig8's cyclist comes apart as its side

@@ -17,6 +17,11 @@ Gaussian2 FuseGaussians(const Gaussian2& a, const Gaussian2& b) {
   return fused;
 }
 
+double DisagreementScale(const Gaussian2& a, const Gaussian2& b, double quantile) {
+  const double d2 = MahalanobisSquared(a.mean - b.mean, a.covariance + b.covariance);
+  return d2 > quantile ? d2 / quantile : 1.0;
+}
+
 double MahalanobisSquared(const Eigen::Vector2d& difference, const Matrix2d& covariance) {
   return difference.dot(covariance.inverse() * difference);
 }

@@ -20,6 +20,17 @@ struct Gaussian2 {
 // Both covariances must be symmetric positive definite.
 Gaussian2 FuseGaussians(const Gaussian2& a, const Gaussian2& b);
 
+// How much two measurements of one point disagree beyond what their covariances allow: their
+// difference's d^2 under a.covariance + b.covariance (2 dof, chi-square when the pair is right
+// and both covariances are) against `quantile`, the chi-square quantile of a probability.
+// max(1, d^2 / quantile): 1 for all but the rarest consistent pairs; beyond, the factor by which
+// both covariances must grow for the difference to sit on the quantile. Scaling both by it
+// leaves FuseGaussians' mean where it was and scales the fused covariance by it: the
+// disagreement itself is the evidence that one of the two (a pair on a neighbour's segment,
+// a point on another side of the body) is off by more than it says. Both covariances positive
+// definite, quantile > 0.
+double DisagreementScale(const Gaussian2& a, const Gaussian2& b, double quantile);
+
 // The squared Mahalanobis distance of `difference` under `covariance` (positive definite).
 double MahalanobisSquared(const Eigen::Vector2d& difference, const Eigen::Matrix2d& covariance);
 

@@ -87,5 +87,27 @@ TEST(GaussianFusionTest, MahalanobisOfAnAxisAlignedCovariance) {
               1e-15);
 }
 
+// Two points 0.5 m apart along x, each with variance 0.01 there: d^2 = 0.25 / 0.02 = 12.5,
+// beyond the 99 % quantile (9.21): the scale is 12.5 / 9.21, and with it both covariances put
+// the difference on the quantile. Moved within it (0.4 m: d^2 = 8), the scale is 1.
+TEST(GaussianFusionTest, ADisagreementBeyondTheQuantileScalesTheCovariance) {
+  const double quantile = 9.2103403719761836;  // chi-square, 2 dof, 0.99
+  const Gaussian2 lidar{Vector2d(10.0, 0.0), Vector2d(0.01, 0.04).asDiagonal()};
+  const Gaussian2 stereo{Vector2d(10.5, 0.0), Vector2d(0.01, 0.09).asDiagonal()};
+  const double scale = DisagreementScale(lidar, stereo, quantile);
+  EXPECT_NEAR(scale, 12.5 / quantile, 1e-12);
+  EXPECT_NEAR(
+      MahalanobisSquared(lidar.mean - stereo.mean, scale * (lidar.covariance + stereo.covariance)),
+      quantile, 1e-9);
+  // Scaling both inputs leaves the fused mean and scales the fused covariance.
+  const Gaussian2 fused = FuseGaussians(lidar, stereo);
+  const Gaussian2 scaled = FuseGaussians({lidar.mean, scale * lidar.covariance},
+                                         {stereo.mean, scale * stereo.covariance});
+  EXPECT_LT((scaled.mean - fused.mean).norm(), 1e-12);
+  EXPECT_LT((scaled.covariance - scale * fused.covariance).norm(), 1e-12);
+  const Gaussian2 near{Vector2d(10.4, 0.0), stereo.covariance};
+  EXPECT_EQ(DisagreementScale(lidar, near, quantile), 1.0);
+}
+
 }  // namespace
 }  // namespace lookout::fusion
