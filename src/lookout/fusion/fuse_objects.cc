@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 #include <optional>
 
 #include "lookout/core/chi_square.h"
@@ -202,6 +203,12 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
   }
 
   const AssociationGate gate(options);
+  // Once per frame: the quantile is an inversion of the incomplete gamma function. Off: no
+  // disagreement passes an infinite quantile.
+  const double disagreement_quantile =
+      options.disagreement_probability < 1.0
+          ? ChiSquareQuantile(options.disagreement_probability, 2.0)
+          : std::numeric_limits<double>::infinity();
   const std::vector<AssociationPair> pairs =
       AssociateStereoToLidar(stereo_points, lidar_points, gate);
   result.pairs = pairs.size();
@@ -264,10 +271,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         const Gaussian2 position = FuseGaussians(lidar_point, stereo_point);
         f.point_m = position.mean;
         f.point_covariance = position.covariance;
-        if (options.disagreement_probability < 1.0) {
-          f.point_covariance *= DisagreementScale(
-              lidar_point, stereo_point, ChiSquareQuantile(options.disagreement_probability, 2.0));
-        }
+        f.point_covariance *= DisagreementScale(lidar_point, stereo_point, disagreement_quantile);
       }
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);
       f.velocity_mps = velocity.mean;
