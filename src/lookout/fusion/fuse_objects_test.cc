@@ -113,8 +113,9 @@ TEST(FuseObjectsTest, APairThatDisagreesHoldsItsDisagreement) {
   EXPECT_LT((f.point_m - expected.mean).norm(), 1e-9);
   EXPECT_LT((f.point_covariance - scale * expected.covariance).norm(), 1e-9);
   options.disagreement_probability = 1.0;
-  const FusedObject& off = FuseObjects(lidar, stereo, options).frame.objects[0];
-  EXPECT_LT((off.point_covariance - expected.covariance).norm(), 1e-9);
+  const FuseObjectsResult off = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(off.pairs, 1u);
+  EXPECT_LT((off.frame.objects[0].point_covariance - expected.covariance).norm(), 1e-9);
 }
 
 // The lidar point's covariance is the model's (lidar_point_model.h) with the camera's class
