@@ -128,22 +128,20 @@ TEST(FusionEngineTest, BadStereoObjectsAreDroppedAndLogged) {
 }
 
 TEST(FusionEngineTest, InvalidOptionsNameTheField) {
-  FusionOptions options;
-  options.gate_probability = 1.0;
-  try {
-    FusionEngine engine(options);
-    FAIL() << "accepted gate_probability = 1";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("gate_probability"), std::string::npos);
-  }
+  const auto expect_rejected = [](const FusionOptions& options, const std::string& field) {
+    try {
+      FusionEngine engine(options);
+      ADD_FAILURE() << "accepted " << field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  FusionOptions gate;
+  gate.gate_probability = 1.0;
+  expect_rejected(gate, "gate_probability");
   FusionOptions disagreement;
   disagreement.disagreement_probability = 0.0;
-  try {
-    FusionEngine engine(disagreement);
-    FAIL() << "accepted disagreement_probability = 0";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("disagreement_probability"), std::string::npos);
-  }
+  expect_rejected(disagreement, "disagreement_probability");
 }
 
 // Same input, same bytes out.
