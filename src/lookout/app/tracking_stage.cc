@@ -247,9 +247,13 @@ bool ShowsMotion(const tracking::Track& t, const DetectionOptions& options,
   return v.dot(pv.inverse() * v) > ChiSquareQuantile(options.moving_probability, 2.0);
 }
 
+bool IsRoadUser(const tracking::Track& t, bool shows_motion) {
+  return t.existence_log_odds > 0.0 || shows_motion;
+}
+
 bool IsRoadUser(const tracking::Track& t, const DetectionOptions& options,
                 bool moved_when_detected) {
-  return t.existence_log_odds > 0.0 || ShowsMotion(t, options, moved_when_detected);
+  return IsRoadUser(t, ShowsMotion(t, options, moved_when_detected));
 }
 
 std::vector<tracking::Detection> DetectionsFromFusedObjects(
@@ -385,8 +389,9 @@ void TrackingStage::Step(const fusion::FusedObjectFrame& frame,
     std::vector<std::uint32_t> moving_now;
     std::erase_if(tracks, [&](const tracking::Track& t) {
       const bool moved = std::binary_search(moving_ids.begin(), moving_ids.end(), t.id);
-      if (ShowsMotion(t, options_.detections, moved)) moving_now.push_back(t.id);
-      return !IsRoadUser(t, options_.detections, moved);
+      const bool shows_motion = ShowsMotion(t, options_.detections, moved);
+      if (shows_motion) moving_now.push_back(t.id);
+      return !IsRoadUser(t, shows_motion);
     });
     moving_ids = std::move(moving_now);
     return tracks;

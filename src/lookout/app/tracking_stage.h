@@ -166,6 +166,8 @@ bool ShowsMotion(const tracking::Track& track, const DetectionOptions& options,
 // its motion (ShowsMotion). Pure.
 bool IsRoadUser(const tracking::Track& track, const DetectionOptions& options,
                 bool moved_when_detected = false);
+// The same with the track's motion already judged (`shows_motion`: ShowsMotion's verdict).
+bool IsRoadUser(const tracking::Track& track, bool shows_motion);
 
 // The camera's evidence per camera track id: its frames, and the sum of the log class
 // probabilities of its frames. Forgets an id not seen for `forget_after_s`.

@@ -248,16 +248,13 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       result.piece_lidar_ids.push_back(l.id);
       continue;
     }
-    if (paired) {
-      const stereo::StereoPoint& s = stereo[*paired];
+    if (const auto i = paired) {
+      const stereo::StereoPoint& s = stereo[*i];
       as_fused.point_covariance =
           LidarPointCovariance(l,
                                PairedBody{s.object_class, s.footprint.length_m, s.footprint.width_m,
                                           s.front.end_m - s.front.start_m},
                                lidar.mount.translation, options.lidar_point);
-    }
-    if (const auto i = paired) {
-      const stereo::StereoPoint& s = stereo[*i];
       if (pairing.footprint_pair[j]) {
         // Two sides' middles are not one point: the camera's is kept, with its front.
         f.point_m = stereo_points[*i].point_m;
@@ -270,8 +267,8 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};
         const Gaussian2 position = FuseGaussians(lidar_point, stereo_point);
         f.point_m = position.mean;
-        f.point_covariance = position.covariance;
-        f.point_covariance *= DisagreementScale(lidar_point, stereo_point, disagreement_quantile);
+        f.point_covariance = DisagreementScale(lidar_point, stereo_point, disagreement_quantile) *
+                             position.covariance;
       }
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);
       f.velocity_mps = velocity.mean;
