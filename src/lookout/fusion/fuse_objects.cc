@@ -250,11 +250,10 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
     }
     if (const auto i = paired) {
       const stereo::StereoPoint& s = stereo[*i];
+      const PairedBody body{s.object_class, s.footprint.length_m, s.footprint.width_m,
+                            s.front.end_m - s.front.start_m, s.yaw_variance};
       as_fused.point_covariance =
-          LidarPointCovariance(l,
-                               PairedBody{s.object_class, s.footprint.length_m, s.footprint.width_m,
-                                          s.front.end_m - s.front.start_m},
-                               lidar.mount.translation, options.lidar_point);
+          LidarPointCovariance(l, body, lidar.mount.translation, options.lidar_point);
       if (pairing.footprint_pair[j]) {
         // Two sides' middles are not one point: the camera's is kept, with its front.
         f.point_m = stereo_points[*i].point_m;
@@ -263,9 +262,16 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         f.front_end_m = s.front.end_m;
         f.footprint_pair = true;
       } else {
-        const Gaussian2 lidar_point{as_fused.point_m, as_fused.point_covariance};
+        // The lidar's point for the side the camera's box turns to it, the segment's middle
+        // unless a corner view says another side faces (FacingSidePoint). The lidar object
+        // itself keeps its own point: what the lidar alone measured.
+        const LidarSidePoint side =
+            FacingSidePoint(l, body, lidar.mount.translation, options.lidar_point);
+        const Gaussian2 lidar_point{side.point_m, side.covariance};
         const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};
         const Gaussian2 position = FuseGaussians(lidar_point, stereo_point);
+        f.front_start_m = side.front_start_m;
+        f.front_end_m = side.front_end_m;
         f.point_m = position.mean;
         f.point_covariance = DisagreementScale(lidar_point, stereo_point, disagreement_quantile) *
                              position.covariance;

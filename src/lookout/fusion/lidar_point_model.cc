@@ -7,6 +7,8 @@
 
 #include "lookout/core/planar_geometry.h"
 #include "lookout/core/pose2.h"
+#include "lookout/stereo/oriented_box.h"
+#include "lookout/stereo/stereo_point.h"
 
 namespace lookout::fusion {
 namespace {
@@ -35,6 +37,10 @@ void LidarPointModelOptions::Validate() const {
                     "max_round_diameter_m", "must be finite and >= 0");
   RequirePointModel(std::isfinite(round_square_tolerance_m) && round_square_tolerance_m >= 0.0,
                     "round_square_tolerance_m", "must be finite and >= 0");
+  RequirePointModel(std::isfinite(corner_min_segment_m) && corner_min_segment_m >= 0.0,
+                    "corner_min_segment_m", "must be finite and >= 0");
+  RequirePointModel(std::isfinite(camera_size_sigma_m) && camera_size_sigma_m >= 0.0,
+                    "camera_size_sigma_m", "must be finite and >= 0");
   RequirePointModel(camera_side_max_angle_rad >= 0.0 && camera_side_max_angle_rad <= 0.5 * kPi,
                     "camera_side_max_angle_rad", "must be in [0, pi/2]");
   const auto footprint = footprints.FirstInvalidField();
@@ -156,6 +162,77 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
   }
   covariance += var_along * u * u.transpose();
   return covariance;
+}
+
+LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body,
+                               const Vector2d& lidar_origin_m,
+                               const LidarPointModelOptions& options) {
+  LidarSidePoint seen{object.point_m, LidarPointCovariance(object, body, lidar_origin_m, options),
+                      object.front_start_m, object.front_end_m};
+  const double facing = body.facing_side_m.norm();
+  if (!options.corner_view || !(facing > 0.0) || RoundBodyRadius(body, options)) return seen;
+  const Vector2d segment = object.front_end_m - object.front_start_m;
+  const double visible = segment.norm();
+  if (!(visible >= options.corner_min_segment_m) || visible <= 0.0) return seen;
+  const Vector2d u = segment / visible;
+  const double cos_to_facing = std::abs(u.dot(body.facing_side_m)) / facing;
+  const bool along_facing = cos_to_facing >= std::cos(options.camera_side_max_angle_rad);
+  const bool across_facing = cos_to_facing <= std::sin(options.camera_side_max_angle_rad);
+  if (!along_facing && !across_facing) return seen;
+  // The corner: the segment's end nearer to the lidar along it.
+  const double lidar_along = (lidar_origin_m - object.front_start_m).dot(u);
+  if (lidar_along >= 0.0 && lidar_along <= visible) return seen;
+  const Vector2d corner = lidar_along < 0.0 ? object.front_start_m : object.front_end_m;
+  const Vector2d inward = lidar_along < 0.0 ? u : Vector2d(-u);
+  Vector2d away(-u.y(), u.x());
+  if (away.dot(corner - lidar_origin_m) < 0.0) away = -away;
+  // The camera's sides: which lies along the segment, which across.
+  const double across_side = std::abs(facing - body.length_m) <= std::abs(facing - body.width_m)
+                                 ? body.width_m
+                                 : body.length_m;
+  const double seen_length = along_facing ? facing : across_side;
+  const double other_length = along_facing ? across_side : facing;
+
+  const Matrix2d& own = object.point_covariance;
+  const double half = 0.5 * other_length;
+  const double offset_variance = away.dot(own * away);
+  const double segment_heading_variance = 12.0 * offset_variance / (visible * visible);
+  const double heading_variance =
+      body.yaw_variance > 0.0 ? 1.0 / (1.0 / segment_heading_variance + 1.0 / body.yaw_variance)
+                              : segment_heading_variance;
+  const double corner_variance = 2.0 * u.dot(own * u);
+  const double size_variance = 0.25 * options.camera_size_sigma_m * options.camera_size_sigma_m;
+  const LidarSidePoint other_side{
+      corner + half * away,
+      (corner_variance + half * half * heading_variance) * u * u.transpose() +
+          (offset_variance + size_variance) * away * away.transpose(),
+      corner, corner + other_length * away};
+
+  // The box on the segment, and the rule's side on it.
+  stereo::OrientedBox box;
+  box.center_m = corner + 0.5 * seen_length * inward + half * away;
+  const Vector2d length_axis = seen_length >= other_length ? u : away;
+  box.yaw_rad = std::atan2(length_axis.y(), length_axis.x());
+  box.length_m = std::max(seen_length, other_length);
+  box.width_m = std::min(seen_length, other_length);
+  const std::optional<stereo::FrontSegment> rule = stereo::FrontSegmentFacing(box, lidar_origin_m);
+  if (!rule) return seen;
+  const Vector2d rule_side = rule->end_m - rule->start_m;
+  const bool seen_faces = std::abs(rule_side.dot(u)) >= std::abs(rule_side.dot(away));
+  const Matrix2d center_covariance = corner_variance * u * u.transpose() +
+                                     offset_variance * away * away.transpose() +
+                                     size_variance * Matrix2d::Identity();
+  const double q =
+      stereo::OtherSideProbability(box, center_covariance, heading_variance, lidar_origin_m);
+
+  const LidarSidePoint& front = seen_faces ? seen : other_side;
+  const LidarSidePoint& back = seen_faces ? other_side : seen;
+  LidarSidePoint out = q <= 0.5 ? front : back;
+  const Vector2d difference = back.point_m - front.point_m;
+  out.point_m = front.point_m + q * difference;
+  out.covariance = (1.0 - q) * front.covariance + q * back.covariance +
+                   q * (1.0 - q) * difference * difference.transpose();
+  return out;
 }
 
 }  // namespace lookout::fusion

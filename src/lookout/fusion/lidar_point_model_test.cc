@@ -281,6 +281,88 @@ TEST(LidarPointModelTest, ASideTheCameraMeasuresLongerIsPartlyHidden) {
   EXPECT_EQ(LidarPointCovariance(segment, car, lidar, off), segment.point_covariance);
 }
 
+// A cyclist (1.8 x 0.6 m, heading +x, x in [6, 7.8], y in [-1.85, -1.25]) seen from the
+// origin: the ray from its centre leaves through its rear end (x = 6), whose middle (6, -1.55)
+// is the truth's point; the lidar's segment is the whole near long side.
+TEST(LidarPointModelTest, TheCornerViewTakesTheFacingSidesMiddle) {
+  LidarPointModelOptions exact;
+  exact.camera_size_sigma_m = 0.0;
+  const Vector2d lidar(0.0, 0.0);
+  LidarObject side = SegmentObject(Vector2d(6.9, -1.25), Vector2d(0.9, 0.0));
+  side.point_covariance = Vector2d(0.0001, 0.00001).asDiagonal();
+  const PairedBody cyclist{ObjectClass::kCyclist, 1.8, 0.6, Vector2d(0.0, 0.6)};
+  const LidarSidePoint p = FacingSidePoint(side, cyclist, lidar, exact);
+  EXPECT_LT((p.point_m - Vector2d(6.0, -1.55)).norm(), 1e-12);
+  EXPECT_LT((p.front_start_m - Vector2d(6.0, -1.25)).norm(), 1e-12);
+  EXPECT_LT((p.front_end_m - Vector2d(6.0, -1.85)).norm(), 1e-12);
+  // Along the segment the corner (twice the middle's 0.0001) and the 0.3 m half side turned by
+  // the segment's heading error (12 x 0.00001 / 1.8^2); across, the segment's offset and the
+  // half side's (sigma / 2)^2.
+  const double along = 2.0 * 0.0001 + 0.3 * 0.3 * 12.0 * 0.00001 / (1.8 * 1.8);
+  EXPECT_NEAR(p.covariance(0, 0), along, 1e-15);
+  EXPECT_NEAR(p.covariance(1, 1), 0.00001, 1e-15);
+  EXPECT_NEAR(p.covariance(0, 1), 0.0, 1e-15);
+  const LidarPointModelOptions options;
+  EXPECT_NEAR(FacingSidePoint(side, cyclist, lidar, options).covariance(1, 1),
+              0.00001 + 0.05 * 0.05, 1e-12);
+
+  // The camera's box picked the long side (its heading is the camera's, tenths of a radian
+  // out): the segment's box decides, the same end.
+  const PairedBody turned{ObjectClass::kCyclist, 1.8, 0.6, Vector2d(1.8, 0.0)};
+  EXPECT_LT((FacingSidePoint(side, turned, lidar, exact).point_m - p.point_m).norm(), 1e-12);
+
+  // Seen along the box's diagonal the rule's test is 0: either side as likely, the point half
+  // way, the spread between the middles in its covariance.
+  const Vector2d centre(6.9, -1.55);
+  const Vector2d diagonal = centre + 10.0 * Vector2d(-0.9, 0.3);
+  const LidarSidePoint m = FacingSidePoint(side, cyclist, diagonal, exact);
+  const Vector2d d = Vector2d(6.9, -1.25) - Vector2d(6.0, -1.55);
+  EXPECT_LT((m.point_m - (Vector2d(6.0, -1.55) + 0.5 * d)).norm(), 1e-9);
+  EXPECT_GT(d.normalized().dot(m.covariance * d.normalized()), 0.25 * d.squaredNorm());
+
+  // Seen from (4, 3) the long side faces the lidar: the segment's own middle.
+  const Vector2d above(4.0, 3.0);
+  const LidarSidePoint own = FacingSidePoint(side, turned, above, exact);
+  EXPECT_LT((own.point_m - side.point_m).norm(), 1e-12);
+  EXPECT_LT((own.covariance - LidarPointCovariance(side, turned, above, exact)).norm(), 1e-12);
+  EXPECT_EQ(own.front_start_m, side.front_start_m);
+
+  // Where it does not apply, the segment's own point and covariance.
+  const auto unchanged = [&](const LidarObject& o, const PairedBody& b, const Vector2d& from,
+                             const LidarPointModelOptions& with) {
+    const LidarSidePoint r = FacingSidePoint(o, b, from, with);
+    return r.point_m == o.point_m && r.covariance == LidarPointCovariance(o, b, from, with) &&
+           r.front_start_m == o.front_start_m && r.front_end_m == o.front_end_m;
+  };
+  LidarPointModelOptions off;
+  off.corner_view = false;
+  EXPECT_TRUE(unchanged(side, cyclist, lidar, off));
+  EXPECT_TRUE(unchanged(side, {ObjectClass::kCyclist, 0.6, 0.6, Vector2d(0.0, 0.6)}, lidar,
+                        options));  // round
+  EXPECT_TRUE(unchanged(side, {ObjectClass::kCyclist, 1.8, 0.6, Vector2d::Zero()}, lidar,
+                        options));  // no box
+  EXPECT_TRUE(unchanged(SegmentObject(Vector2d(6.9, -1.25), Vector2d(0.1, 0.0)), cyclist, lidar,
+                        options));  // too short
+  EXPECT_TRUE(unchanged(SegmentObject(Vector2d(6.9, -1.25), Vector2d(0.6, 0.6)), cyclist, lidar,
+                        options));                                     // oblique to both sides
+  EXPECT_TRUE(unchanged(side, cyclist, Vector2d(6.5, 3.0), options));  // no end visible
+}
+
+// A 0.3 m piece of an oncoming car's 1.8 m front (x = 30), its ends hidden: its own heading
+// is the noise's (sigma 2.6 rad from its 0.05 m^2 offset variance), and on it alone the side
+// choice is a coin toss that drags the point metres down the car's long side. The camera's
+// heading (0.1 rad) keeps the front.
+TEST(LidarPointModelTest, TheCamerasHeadingSteadiesAShortSegmentsBox) {
+  const LidarPointModelOptions options;
+  const Vector2d lidar(0.0, 0.0);
+  LidarObject piece = SegmentObject(Vector2d(30.0, 3.5), Vector2d(0.0, 0.15));
+  piece.point_covariance = Vector2d(0.05, 0.2).asDiagonal();
+  PairedBody car{ObjectClass::kCar, 4.5, 1.8, Vector2d(0.0, 1.8), 0.01};
+  EXPECT_LT((FacingSidePoint(piece, car, lidar, options).point_m - piece.point_m).norm(), 0.05);
+  car.yaw_variance = 0.0;  // unknown: the segment's heading alone
+  EXPECT_GT((FacingSidePoint(piece, car, lidar, options).point_m - piece.point_m).norm(), 0.5);
+}
+
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
   LidarObject o;
   o.class_pmf = {0.2, 0.5, 0.1, 0.2, 0.0, 0.0};

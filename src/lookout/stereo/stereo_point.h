@@ -34,6 +34,7 @@ struct StereoPoint {
   CartesianPoint point;
   RangeBearing polar;     // the same point from the lidar origin, in the lidar frame
   double depth_m = 0.0;   // of the centre, along the camera's axis
+  double yaw_variance = 0.0;  // of footprint.yaw_rad, rad^2 (the camera's)
 };
 
 // The expected front point of a box whose centre and heading are uncertain (vehicle frame;
@@ -48,6 +49,12 @@ struct StereoPoint {
 //     mean = (1 - q) m_a + q m_b,  cov = (1 - q) P_a + q P_b + q (1 - q) (m_b - m_a)(m_b - m_a)^T
 // the least-squares estimate of the true side's middle, with a covariance that is honest
 // about the ambiguity. nullopt when the viewpoint is inside the box.
+// The q of ExpectedFrontPoint alone: the probability that the side facing `viewpoint_m` is
+// not the one FrontSegmentFacing picks, from the box's centre and heading uncertainty. 0 when
+// the viewpoint is inside the box.
+double OtherSideProbability(const OrientedBox& box, const Eigen::Matrix2d& center_covariance,
+                            double yaw_variance, const Eigen::Vector2d& viewpoint_m);
+
 std::optional<CartesianPoint> ExpectedFrontPoint(const OrientedBox& box,
                                                  const Eigen::Matrix2d& center_covariance,
                                                  double yaw_variance,

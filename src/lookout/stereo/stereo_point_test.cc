@@ -206,5 +206,21 @@ TEST(ExpectedFrontPointTest, MixesTheTwoSidesOnlyNearACornerView) {
   EXPECT_FALSE(ExpectedFrontPoint(box, c, 1e-4, Vector2d(20.5, 0.2)).has_value());
 }
 
+// The mixture's weight alone: nothing far from a corner view, a half on the diagonal, and
+// towards a half as the viewer nears the diagonal.
+TEST(ExpectedFrontPointTest, OtherSideProbabilityGrowsTowardsTheCornerView) {
+  const Matrix2d c = 0.01 * Matrix2d::Identity();
+  const OrientedBox box{Vector2d(20.0, 0.0), 0.0, 4.0, 2.0};
+  EXPECT_LT(OtherSideProbability(box, c, 1e-4, Vector2d::Zero()), 1e-12);
+  const Vector2d diagonal = box.center_m + 10.0 * Vector2d(2.0, 1.0);
+  EXPECT_NEAR(OtherSideProbability(box, c, 1e-4, diagonal), 0.5, 1e-12);
+  const double near = OtherSideProbability(box, c, 1e-4, diagonal + Vector2d(0.0, 0.3));
+  const double nearer = OtherSideProbability(box, c, 1e-4, diagonal + Vector2d(0.0, 0.1));
+  EXPECT_GT(near, 1e-3);
+  EXPECT_LT(near, nearer);
+  EXPECT_LT(nearer, 0.5);
+  EXPECT_EQ(OtherSideProbability(box, c, 1e-4, Vector2d(20.5, 0.2)), 0.0);  // inside
+}
+
 }  // namespace
 }  // namespace lookout::stereo
