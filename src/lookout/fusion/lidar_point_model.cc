@@ -1,5 +1,6 @@
 #include "lookout/fusion/lidar_point_model.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -135,9 +136,22 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
     // The scan's bounds can be wrong where the camera measures the side longer than the
     // segment: the rest of it is hidden at one end or the other.
     const double side = body.facing_side_m.norm();
-    if (options.camera_side && !radius_term && side > 0.0 &&
-        std::abs(u.dot(body.facing_side_m)) >= side * std::cos(options.camera_side_max_angle_rad)) {
-      covariance += HiddenExtentVariance(visible, side) * u * u.transpose();
+    if (options.camera_side && !radius_term && side > 0.0) {
+      const double cos_to_facing = std::abs(u.dot(body.facing_side_m)) / side;
+      if (visible < options.corner_min_segment_m) {
+        // Too short for its direction to be the side's (two or three returns centimetres
+        // apart, their line the range noise's): the spread the scan puts along it may lie
+        // along the camera's side as well.
+        const Vector2d f = body.facing_side_m / side;
+        covariance += u.dot(object.point_covariance * u) * f * f.transpose();
+      } else if (cos_to_facing >= std::cos(options.camera_side_max_angle_rad)) {
+        covariance += HiddenExtentVariance(visible, side) * u * u.transpose();
+      } else if (cos_to_facing > std::sin(options.camera_side_max_angle_rad)) {
+        // Oblique to both of the box's sides: a chord across a corner, too short to split
+        // into an L. It covers its projection of the facing side; the rest is hidden.
+        const Vector2d f = body.facing_side_m / side;
+        covariance += HiddenExtentVariance(visible * cos_to_facing, side) * f * f.transpose();
+      }
     }
     return covariance;
   }
@@ -174,14 +188,35 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
   const Vector2d segment = object.front_end_m - object.front_start_m;
   const double visible = segment.norm();
   if (!(visible >= options.corner_min_segment_m) || visible <= 0.0) return seen;
-  const Vector2d u = segment / visible;
-  const double cos_to_facing = std::abs(u.dot(body.facing_side_m)) / facing;
+  const Vector2d along_segment = segment / visible;
+  const double cos_to_facing = std::abs(along_segment.dot(body.facing_side_m)) / facing;
   const bool along_facing = cos_to_facing >= std::cos(options.camera_side_max_angle_rad);
   const bool across_facing = cos_to_facing <= std::sin(options.camera_side_max_angle_rad);
   if (!along_facing && !across_facing) return seen;
-  // The corner: the segment's end nearer to the lidar along it.
+  // The segment's heading and offset, from its own covariance.
+  const Vector2d across_segment(-along_segment.y(), along_segment.x());
+  const Matrix2d& own = object.point_covariance;
+  const double offset_variance = across_segment.dot(own * across_segment);
+  const double corner_variance = 2.0 * along_segment.dot(own * along_segment);
+  const double segment_heading_variance = 12.0 * offset_variance / (visible * visible);
+  // The camera's heading of the same side, turned to the segment's sense; the two combined by
+  // their variances (the segment's alone when the camera gives none).
+  Vector2d camera_side = body.facing_side_m / facing;
+  if (across_facing) camera_side = Vector2d(-camera_side.y(), camera_side.x());
+  if (camera_side.dot(along_segment) < 0.0) camera_side = -camera_side;
+  double heading_variance = segment_heading_variance;
+  double camera_weight = 0.0;
+  if (body.yaw_variance > 0.0) {
+    heading_variance = 1.0 / (1.0 / segment_heading_variance + 1.0 / body.yaw_variance);
+    camera_weight = segment_heading_variance / (segment_heading_variance + body.yaw_variance);
+  }
+  const double turn =
+      camera_weight * std::atan2(Cross(along_segment, camera_side), along_segment.dot(camera_side));
+  const Vector2d u = Eigen::Rotation2Dd(turn) * along_segment;
+  // The corner: the segment's end nearer to the lidar along the side.
   const double lidar_along = (lidar_origin_m - object.front_start_m).dot(u);
-  if (lidar_along >= 0.0 && lidar_along <= visible) return seen;
+  const double end_along = (object.front_end_m - object.front_start_m).dot(u);
+  if (lidar_along >= 0.0 && lidar_along <= end_along) return seen;
   const Vector2d corner = lidar_along < 0.0 ? object.front_start_m : object.front_end_m;
   const Vector2d inward = lidar_along < 0.0 ? u : Vector2d(-u);
   Vector2d away(-u.y(), u.x());
@@ -192,15 +227,7 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
                                  : body.length_m;
   const double seen_length = along_facing ? facing : across_side;
   const double other_length = along_facing ? across_side : facing;
-
-  const Matrix2d& own = object.point_covariance;
   const double half = 0.5 * other_length;
-  const double offset_variance = away.dot(own * away);
-  const double segment_heading_variance = 12.0 * offset_variance / (visible * visible);
-  const double heading_variance =
-      body.yaw_variance > 0.0 ? 1.0 / (1.0 / segment_heading_variance + 1.0 / body.yaw_variance)
-                              : segment_heading_variance;
-  const double corner_variance = 2.0 * u.dot(own * u);
   const double size_variance = 0.25 * options.camera_size_sigma_m * options.camera_size_sigma_m;
   const LidarSidePoint other_side{
       corner + half * away,

@@ -363,6 +363,29 @@ TEST(LidarPointModelTest, TheCamerasHeadingSteadiesAShortSegmentsBox) {
   EXPECT_GT((FacingSidePoint(piece, car, lidar, options).point_m - piece.point_m).norm(), 0.5);
 }
 
+// A segment oblique to both of the box's sides is a chord across a corner: it covers its
+// projection of the facing side, the rest hidden along that side. One too short for its
+// direction to be the side's spreads along the camera's side too.
+TEST(LidarPointModelTest, AChordAcrossACornerAndAShortPieceSpreadAlongTheCamerasSide) {
+  const LidarPointModelOptions options;
+  const Vector2d lidar(0.0, 0.0);
+  const PairedBody cyclist{ObjectClass::kCyclist, 1.8, 0.6, Vector2d(0.0, 1.8)};
+  const Vector2d y(0.0, 1.0);
+  const LidarObject chord = SegmentObject(Vector2d(20.0, 0.0), Vector2d(0.15, 0.15));
+  const double projected = std::sqrt(2.0) * 0.3 * std::cos(0.25 * kPi);
+  const Matrix2d c = LidarPointCovariance(chord, cyclist, lidar, options);
+  EXPECT_LT((c - chord.point_covariance - HiddenExtentVariance(projected, 1.8) * y * y.transpose())
+                .norm(),
+            1e-12);
+  const LidarObject piece = SegmentObject(Vector2d(20.0, 0.0), Vector2d(0.05, 0.0));
+  const Matrix2d p = LidarPointCovariance(piece, cyclist, lidar, options);
+  EXPECT_LT((p - piece.point_covariance - 0.0004 * y * y.transpose()).norm(), 1e-12);
+  LidarPointModelOptions off;
+  off.camera_side = false;
+  EXPECT_EQ(LidarPointCovariance(chord, cyclist, lidar, off), chord.point_covariance);
+  EXPECT_EQ(LidarPointCovariance(piece, cyclist, lidar, off), piece.point_covariance);
+}
+
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
   LidarObject o;
   o.class_pmf = {0.2, 0.5, 0.1, 0.2, 0.0, 0.0};
