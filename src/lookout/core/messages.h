@@ -87,6 +87,11 @@ struct LidarObject {
   std::uint32_t cell_count = 0;   // grid cells in the cluster (0 from scan segmentation)
   std::uint32_t point_count = 0;  // scan points on the object
   bool dynamic = false;           // moving over the ground
+  // What the segmentation moved the front segment and the point by, taking the returns for a
+  // round body's arc (towards the lidar, to the body's nearest point); zero otherwise. A box's
+  // end seen head on, with a return on each side just behind its corners, looks the same to
+  // the scan: the fusion undoes the move where the camera's box is no circle.
+  Eigen::Vector2d round_body_shift_m = Eigen::Vector2d::Zero();
 };
 
 struct LidarObjectFrame {

@@ -181,10 +181,15 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
 LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body,
                                const Vector2d& lidar_origin_m,
                                const LidarPointModelOptions& options) {
-  LidarSidePoint seen{object.point_m, LidarPointCovariance(object, body, lidar_origin_m, options),
-                      object.front_start_m, object.front_end_m};
+  const bool round = RoundBodyRadius(body, options).has_value();
+  // A segment the scan took for a round body's arc, moved to its nearest point, goes back where
+  // the returns put it when the camera's box is no circle.
+  const Vector2d unmoved = round ? Vector2d::Zero() : Vector2d(-object.round_body_shift_m);
+  LidarSidePoint seen{object.point_m + unmoved,
+                      LidarPointCovariance(object, body, lidar_origin_m, options),
+                      object.front_start_m + unmoved, object.front_end_m + unmoved};
   const double facing = body.facing_side_m.norm();
-  if (!options.corner_view || !(facing > 0.0) || RoundBodyRadius(body, options)) return seen;
+  if (!options.corner_view || !(facing > 0.0) || round) return seen;
   const Vector2d segment = object.front_end_m - object.front_start_m;
   const double visible = segment.norm();
   if (!(visible >= options.corner_min_segment_m) || visible <= 0.0) return seen;
@@ -214,10 +219,10 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
       camera_weight * std::atan2(Cross(along_segment, camera_side), along_segment.dot(camera_side));
   const Vector2d u = Eigen::Rotation2Dd(turn) * along_segment;
   // The corner: the segment's end nearer to the lidar along the side.
-  const double lidar_along = (lidar_origin_m - object.front_start_m).dot(u);
-  const double end_along = (object.front_end_m - object.front_start_m).dot(u);
+  const double lidar_along = (lidar_origin_m - seen.front_start_m).dot(u);
+  const double end_along = (seen.front_end_m - seen.front_start_m).dot(u);
   if (lidar_along >= 0.0 && lidar_along <= end_along) return seen;
-  const Vector2d corner = lidar_along < 0.0 ? object.front_start_m : object.front_end_m;
+  const Vector2d corner = lidar_along < 0.0 ? seen.front_start_m : seen.front_end_m;
   const Vector2d inward = lidar_along < 0.0 ? u : Vector2d(-u);
   Vector2d away(-u.y(), u.x());
   if (away.dot(corner - lidar_origin_m) < 0.0) away = -away;

@@ -386,6 +386,23 @@ TEST(LidarPointModelTest, AChordAcrossACornerAndAShortPieceSpreadAlongTheCameras
   EXPECT_EQ(LidarPointCovariance(piece, cyclist, lidar, off), piece.point_covariance);
 }
 
+// A segment the scan took for an arc and moved 6 cm towards the lidar (right-turn-cyclist's
+// cyclist, its 0.6 m end seen head on between a return on each side: NEES 52 and 42) goes
+// back where its returns put it when the camera's box is no circle; a round box keeps it.
+TEST(LidarPointModelTest, AnArcTheCameraSaysIsNoCircleGoesBack) {
+  const LidarPointModelOptions options;
+  const Vector2d lidar(0.0, 0.0);
+  LidarObject end = SegmentObject(Vector2d(11.19, -1.55), Vector2d(0.0, 0.3));
+  end.point_covariance = 1e-6 * Matrix2d::Identity();  // the end's side choice sure
+  end.round_body_shift_m = Vector2d(-0.064, 0.0);
+  const PairedBody cyclist{ObjectClass::kCyclist, 1.8, 0.6, Vector2d(0.0, 0.6)};
+  const LidarSidePoint back = FacingSidePoint(end, cyclist, lidar, options);
+  EXPECT_LT((back.point_m - Vector2d(11.254, -1.55)).norm(), 1e-9);
+  EXPECT_LT((back.front_start_m - Vector2d(11.254, -1.85)).norm(), 1e-9);
+  const PairedBody walker{ObjectClass::kPedestrian, 0.6, 0.6, Vector2d(0.0, 0.6)};
+  EXPECT_EQ(FacingSidePoint(end, walker, lidar, options).point_m, end.point_m);
+}
+
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
   LidarObject o;
   o.class_pmf = {0.2, 0.5, 0.1, 0.2, 0.0, 0.0};

@@ -182,6 +182,7 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
       o.front_start_m += shift;
       o.front_end_m += shift;
       o.point_m += shift;
+      o.round_body_shift_m = shift;
     }
   }
 

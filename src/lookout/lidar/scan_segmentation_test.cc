@@ -187,6 +187,9 @@ TEST(ScanSegmentation, ARoundBodyIsOneArc) {
   const double chord = (o.front_end_m - o.front_start_m).norm();
   EXPECT_GT(chord, 0.45);
   EXPECT_LT(chord, 0.61);
+  // The move is reported: towards the lidar, (1 - pi / 4) r with r half the chord.
+  EXPECT_NEAR(-ray.dot(o.round_body_shift_m), (1.0 - 0.25 * kPi) * 0.5 * chord, 1e-3);
+  EXPECT_LT(std::abs(Cross(ray, o.round_body_shift_m)), 0.01);
 }
 
 TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
