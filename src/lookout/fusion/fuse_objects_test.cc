@@ -64,9 +64,11 @@ TEST(FuseObjectsTest, PairIsFusedByCovariances) {
   const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
   // The covariances as given: the lidar point model (which would add a pedestrian's round
-  // body to the lidar's, TheLidarPointTakesTheCamerasClass) is off here.
+  // body to the lidar's, TheLidarPointTakesTheCamerasClass, and the side's heading) is off
+  // here.
   FusionOptions options;
   options.lidar_point.round_body = false;
+  options.lidar_point.side_heading = false;
   const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
   ASSERT_EQ(result.frame.objects.size(), 1u);
   EXPECT_EQ(result.pairs, 1u);
@@ -101,6 +103,7 @@ TEST(FuseObjectsTest, APairThatDisagreesHoldsItsDisagreement) {
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
   FusionOptions options;
   options.lidar_point.round_body = false;
+  options.lidar_point.side_heading = false;
   const Gaussian2 l{lidar.objects[0].point_m, lidar.objects[0].point_covariance};
   const Gaussian2 s{stereo[0].point.point_m, stereo[0].point.covariance};
   const double quantile = ChiSquareQuantile(options.disagreement_probability, 2.0);

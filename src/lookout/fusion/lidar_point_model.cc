@@ -27,6 +27,16 @@ void RequirePointModel(bool ok, const char* field, const char* what) {
   }
 }
 
+// The heading variance of a segment `visible_m` long along `u` with the object's covariance:
+// 12 times its offset variance over its length squared (the slope of a line fitted to evenly
+// spread points), combined with the camera's heading variance `yaw_variance` (0: none).
+double CombinedHeadingVariance(const Matrix2d& own, const Vector2d& u, double visible_m,
+                               double yaw_variance) {
+  const Vector2d across(-u.y(), u.x());
+  const double segment = 12.0 * across.dot(own * across) / (visible_m * visible_m);
+  return yaw_variance > 0.0 ? 1.0 / (1.0 / segment + 1.0 / yaw_variance) : segment;
+}
+
 }  // namespace
 
 void LidarPointModelOptions::Validate() const {
@@ -152,6 +162,15 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
         const Vector2d f = body.facing_side_m / side;
         covariance += HiddenExtentVariance(visible * cos_to_facing, side) * f * f.transpose();
       }
+      if (options.side_heading && visible >= options.corner_min_segment_m) {
+        // The spread along the segment lies along the true side, which the segment's heading
+        // misses by its error (LidarPointModelOptions::side_heading).
+        const Vector2d v(-u.y(), u.x());
+        covariance +=
+            u.dot(covariance * u) *
+            CombinedHeadingVariance(object.point_covariance, u, visible, body.yaw_variance) * v *
+            v.transpose();
+      }
     }
     return covariance;
   }
@@ -203,18 +222,18 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
   const Matrix2d& own = object.point_covariance;
   const double offset_variance = across_segment.dot(own * across_segment);
   const double corner_variance = 2.0 * along_segment.dot(own * along_segment);
-  const double segment_heading_variance = 12.0 * offset_variance / (visible * visible);
+  const double segment_heading_variance = CombinedHeadingVariance(own, along_segment, visible, 0.0);
   // The camera's heading of the same side, turned to the segment's sense; the two combined by
   // their variances (the segment's alone when the camera gives none).
   Vector2d camera_side = body.facing_side_m / facing;
   if (across_facing) camera_side = Vector2d(-camera_side.y(), camera_side.x());
   if (camera_side.dot(along_segment) < 0.0) camera_side = -camera_side;
-  double heading_variance = segment_heading_variance;
-  double camera_weight = 0.0;
-  if (body.yaw_variance > 0.0) {
-    heading_variance = 1.0 / (1.0 / segment_heading_variance + 1.0 / body.yaw_variance);
-    camera_weight = segment_heading_variance / (segment_heading_variance + body.yaw_variance);
-  }
+  const double heading_variance =
+      CombinedHeadingVariance(own, along_segment, visible, body.yaw_variance);
+  const double camera_weight =
+      body.yaw_variance > 0.0
+          ? segment_heading_variance / (segment_heading_variance + body.yaw_variance)
+          : 0.0;
   const double turn =
       camera_weight * std::atan2(Cross(along_segment, camera_side), along_segment.dot(camera_side));
   const Vector2d u = Eigen::Rotation2Dd(turn) * along_segment;

@@ -252,7 +252,8 @@ TEST(LidarPointModelTest, ARoundBodyIsKnownByItsBoxWhateverItsClass) {
 // across the camera's side (another side seen), a whole side, a round body or the switch off
 // add nothing.
 TEST(LidarPointModelTest, ASideTheCameraMeasuresLongerIsPartlyHidden) {
-  const LidarPointModelOptions options;
+  LidarPointModelOptions options;
+  options.side_heading = false;  // its own test, below
   const Vector2d lidar(2.2, 0.0);
   const Vector2d point(22.2, 0.0);  // ahead: the end runs along y
   const LidarObject segment = SegmentObject(point, Vector2d(0.0, 0.45));
@@ -367,7 +368,8 @@ TEST(LidarPointModelTest, TheCamerasHeadingSteadiesAShortSegmentsBox) {
 // projection of the facing side, the rest hidden along that side. One too short for its
 // direction to be the side's spreads along the camera's side too.
 TEST(LidarPointModelTest, AChordAcrossACornerAndAShortPieceSpreadAlongTheCamerasSide) {
-  const LidarPointModelOptions options;
+  LidarPointModelOptions options;
+  options.side_heading = false;  // its own test, below
   const Vector2d lidar(0.0, 0.0);
   const PairedBody cyclist{ObjectClass::kCyclist, 1.8, 0.6, Vector2d(0.0, 1.8)};
   const Vector2d y(0.0, 1.0);
@@ -401,6 +403,31 @@ TEST(LidarPointModelTest, AnArcTheCameraSaysIsNoCircleGoesBack) {
   EXPECT_LT((back.front_start_m - Vector2d(11.254, -1.85)).norm(), 1e-9);
   const PairedBody walker{ObjectClass::kPedestrian, 0.6, 0.6, Vector2d(0.0, 0.6)};
   EXPECT_EQ(FacingSidePoint(end, walker, lidar, options).point_m, end.point_m);
+}
+
+// The spread along a segment turned by its heading error: 1.8 m of a car's 4.5 m side along y,
+// the hidden 2.7 m spread (2.7^2 / 12) along it, and across it that spread times the heading
+// variance, the segment's 12 x 0.0004 / 1.8^2 combined with the camera's 0.01.
+TEST(LidarPointModelTest, TheSpreadAlongASideTurnsWithItsHeading) {
+  const LidarPointModelOptions options;
+  const Vector2d lidar(0.0, 0.0);
+  const LidarObject side = SegmentObject(Vector2d(20.0, 0.0), Vector2d(0.0, 0.9));
+  const PairedBody car{ObjectClass::kCar, 4.5, 1.8, Vector2d(0.0, 4.5), 0.01};
+  const Matrix2d c = LidarPointCovariance(side, car, lidar, options);
+  const double along = 0.0009 + 2.7 * 2.7 / 12.0;
+  const double segment = 12.0 * 0.0004 / (1.8 * 1.8);
+  const double heading = 1.0 / (1.0 / segment + 1.0 / 0.01);
+  EXPECT_NEAR(c(1, 1), along, 1e-12);
+  EXPECT_NEAR(c(0, 0), 0.0004 + along * heading, 1e-12);
+  EXPECT_NEAR(c(0, 1), 0.0, 1e-15);
+  // Without the camera's heading, the segment's alone; switched off, nothing across.
+  PairedBody no_yaw = car;
+  no_yaw.yaw_variance = 0.0;
+  EXPECT_NEAR(LidarPointCovariance(side, no_yaw, lidar, options)(0, 0), 0.0004 + along * segment,
+              1e-12);
+  LidarPointModelOptions off;
+  off.side_heading = false;
+  EXPECT_NEAR(LidarPointCovariance(side, car, lidar, off)(0, 0), 0.0004, 1e-15);
 }
 
 TEST(LidarPointModelTest, MostLikelyClassOfThePmf) {
