@@ -37,6 +37,35 @@ double CombinedHeadingVariance(const Matrix2d& own, const Vector2d& u, double vi
   return yaw_variance > 0.0 ? 1.0 / (1.0 / segment + 1.0 / yaw_variance) : segment;
 }
 
+// Which side of `box` the truth's rule turns to the lidar: the side along `u` (the segment's)
+// or the one across it, and the probability that it is the other under the box's centre and
+// heading uncertainty. nullopt when the lidar is inside the box.
+struct SideChoice {
+  bool seen_faces = true;
+  double other_side_probability = 0.0;
+};
+std::optional<SideChoice> ChooseSide(const stereo::OrientedBox& box,
+                                     const Matrix2d& center_covariance, double heading_variance,
+                                     const Vector2d& u, const Vector2d& lidar_origin_m) {
+  const std::optional<stereo::FrontSegment> rule = stereo::FrontSegmentFacing(box, lidar_origin_m);
+  if (!rule) return std::nullopt;
+  const Vector2d rule_side = rule->end_m - rule->start_m;
+  const Vector2d across(-u.y(), u.x());
+  return SideChoice{
+      std::abs(rule_side.dot(u)) >= std::abs(rule_side.dot(across)),
+      stereo::OtherSideProbability(box, center_covariance, heading_variance, lidar_origin_m)};
+}
+
+// The moments of `front` with weight 1 - q and `back` with q; the ends of the likelier.
+LidarSidePoint Mixture(const LidarSidePoint& front, const LidarSidePoint& back, double q) {
+  LidarSidePoint out = q <= 0.5 ? front : back;
+  const Vector2d difference = back.point_m - front.point_m;
+  out.point_m = front.point_m + q * difference;
+  out.covariance = (1.0 - q) * front.covariance + q * back.covariance +
+                   q * (1.0 - q) * difference * difference.transpose();
+  return out;
+}
+
 }  // namespace
 
 void LidarPointModelOptions::Validate() const {
@@ -259,31 +288,21 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
           (offset_variance + size_variance) * away * away.transpose(),
       corner, corner + other_length * away};
 
-  // The box on the segment, and the rule's side on it.
+  // The box on the segment, and the truth's rule on it.
   stereo::OrientedBox box;
   box.center_m = corner + 0.5 * seen_length * inward + half * away;
   const Vector2d length_axis = seen_length >= other_length ? u : away;
   box.yaw_rad = std::atan2(length_axis.y(), length_axis.x());
   box.length_m = std::max(seen_length, other_length);
   box.width_m = std::min(seen_length, other_length);
-  const std::optional<stereo::FrontSegment> rule = stereo::FrontSegmentFacing(box, lidar_origin_m);
-  if (!rule) return seen;
-  const Vector2d rule_side = rule->end_m - rule->start_m;
-  const bool seen_faces = std::abs(rule_side.dot(u)) >= std::abs(rule_side.dot(away));
   const Matrix2d center_covariance = corner_variance * u * u.transpose() +
                                      offset_variance * away * away.transpose() +
                                      size_variance * Matrix2d::Identity();
-  const double q =
-      stereo::OtherSideProbability(box, center_covariance, heading_variance, lidar_origin_m);
-
-  const LidarSidePoint& front = seen_faces ? seen : other_side;
-  const LidarSidePoint& back = seen_faces ? other_side : seen;
-  LidarSidePoint out = q <= 0.5 ? front : back;
-  const Vector2d difference = back.point_m - front.point_m;
-  out.point_m = front.point_m + q * difference;
-  out.covariance = (1.0 - q) * front.covariance + q * back.covariance +
-                   q * (1.0 - q) * difference * difference.transpose();
-  return out;
+  const std::optional<SideChoice> choice =
+      ChooseSide(box, center_covariance, heading_variance, u, lidar_origin_m);
+  if (!choice) return seen;
+  return Mixture(choice->seen_faces ? seen : other_side, choice->seen_faces ? other_side : seen,
+                 choice->other_side_probability);
 }
 
 }  // namespace lookout::fusion
