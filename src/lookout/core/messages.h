@@ -92,6 +92,11 @@ struct LidarObject {
   // end seen head on, with a return on each side just behind its corners, looks the same to
   // the scan: the fusion undoes the move where the camera's box is no circle.
   Eigen::Vector2d round_body_shift_m = Eigen::Vector2d::Zero();
+  // How far the side may run on, unseen, past front_start_m and past front_end_m: a beam
+  // spacing where the scan sees the end free, up to a shadow's far edge where something nearer
+  // hides it (the segmentation's HiddenExtent). Zero when the source does not say (the grid's).
+  double hidden_start_m = 0.0;
+  double hidden_end_m = 0.0;
 };
 
 struct LidarObjectFrame {

@@ -250,7 +250,12 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
   const Vector2d across_segment(-along_segment.y(), along_segment.x());
   const Matrix2d& own = object.point_covariance;
   const double offset_variance = across_segment.dot(own * across_segment);
-  const double corner_variance = 2.0 * along_segment.dot(own * along_segment);
+  // The corner is the segment's end, the true corner anywhere in what the scan could not see
+  // past it (up to what the camera's side leaves, below): the second moment about the end,
+  // h^2 / 3, with the returns' own variance along besides. Where the source does not say,
+  // twice the middle's variance along (the two ends' errors taken equal).
+  const double along_variance = along_segment.dot(own * along_segment);
+  double corner_variance = 2.0 * along_variance;
   const double segment_heading_variance = CombinedHeadingVariance(own, along_segment, visible, 0.0);
   // The camera's heading of the same side, turned to the segment's sense; the two combined by
   // their variances (the segment's alone when the camera gives none).
@@ -280,6 +285,11 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
                                  : body.length_m;
   const double seen_length = along_facing ? facing : across_side;
   const double other_length = along_facing ? across_side : facing;
+  const double hidden = lidar_along < 0.0 ? object.hidden_start_m : object.hidden_end_m;
+  if (hidden > 0.0) {
+    const double corner_hidden = std::clamp(seen_length - visible, 0.0, hidden);
+    corner_variance = corner_hidden * corner_hidden / 3.0 + along_variance;
+  }
   const double half = 0.5 * other_length;
   const double size_variance = 0.25 * options.camera_size_sigma_m * options.camera_size_sigma_m;
   const LidarSidePoint other_side{

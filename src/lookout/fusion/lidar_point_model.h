@@ -181,11 +181,13 @@ struct LidarSidePoint {
 // segment's heading is hundredths (with the camera's box, intersafe-fig8's oncoming truck, its
 // front seen whole, took a third of its long side's middle: fused error 1.25 m). The other
 // side's middle lies half its length from the corner. Its covariance: along the segment, the
-// corner's (twice the middle's variance along it, the two ends' errors taken equal and
-// independent) and the half side turned by the heading error: the segment's (12 times its
-// offset variance over its length squared, the slope of a line fitted to evenly spread points)
-// and the camera's heading, two measurements of one heading, combined by their variances, in
-// the box's direction too (a 0.27 m piece of a car's front alone gave 3 rad of sigma, and
+// corner's (the true corner anywhere in what the scan could not see past the segment's end,
+// LidarObject::hidden_start_m / hidden_end_m, up to what the camera's side leaves: h^2 / 3
+// about the end, with the returns' own variance along; where the source does not say, twice
+// the middle's variance along) and the half side turned by the heading error: the segment's (12
+// times its offset variance over its length squared, the slope of a line fitted to evenly spread
+// points) and the camera's heading, two measurements of one heading, combined by their variances,
+// in the box's direction too (a 0.27 m piece of a car's front alone gave 3 rad of sigma, and
 // pushchair-group's oncoming car, its front's middle seen right, half its long side's middle:
 // fused error 0.87 m; a 0.42 m corner piece of cyclist-crossing's cyclist, 0.5 rad off its
 // side, put the side's middle 0.7 m outside the body);

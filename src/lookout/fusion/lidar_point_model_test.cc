@@ -405,6 +405,31 @@ TEST(LidarPointModelTest, AnArcTheCameraSaysIsNoCircleGoesBack) {
   EXPECT_EQ(FacingSidePoint(end, walker, lidar, options).point_m, end.point_m);
 }
 
+// The corner lies anywhere in what the scan could not see past the segment's end: 0.42 m of
+// the cyclist's 1.8 m side seen from its rear corner on, the scan unable to say how far the
+// side runs on past that end (a shadow), the corner's variance along is the second moment of
+// the 1.38 m the camera's side leaves, 1.38^2 / 3 (right-turn-cyclist's pair at 2.7 m: its
+// corner 0.75 m past the end, fused NEES 93). Where the scan sees the end free, a beam spacing.
+TEST(LidarPointModelTest, ACornerPastAHiddenEndIsThatUncertain) {
+  const LidarPointModelOptions options;
+  const Vector2d lidar(0.0, 0.0);
+  LidarObject piece = SegmentObject(Vector2d(6.21, -1.25), Vector2d(0.21, 0.0));
+  piece.point_covariance = Vector2d(0.0001, 0.00001).asDiagonal();
+  piece.hidden_start_m = 2.0;  // the end nearer the lidar: (6, -1.25)
+  piece.hidden_end_m = 0.05;
+  const PairedBody cyclist{ObjectClass::kCyclist, 1.8, 0.6, Vector2d(0.0, 0.6)};
+  const LidarSidePoint hidden = FacingSidePoint(piece, cyclist, lidar, options);
+  // Near the end-on view the segment's own middle weighs a little (the box's side choice under
+  // that corner's spread, q about 0.01).
+  EXPECT_GT(hidden.covariance(0, 0), 0.97 * 1.38 * 1.38 / 3.0);
+  EXPECT_LT(hidden.covariance(0, 0), 1.38 * 1.38 / 3.0 + 0.01);
+  EXPECT_LT((hidden.point_m - Vector2d(6.0, -1.55)).norm(), 0.05);
+  piece.hidden_start_m = 0.01;
+  const LidarSidePoint seen_free = FacingSidePoint(piece, cyclist, lidar, options);
+  EXPECT_LT(seen_free.covariance(0, 0), 0.001);
+  EXPECT_LT((seen_free.point_m - Vector2d(6.0, -1.55)).norm(), 1e-3);
+}
+
 // The spread along a segment turned by its heading error: 1.8 m of a car's 4.5 m side along y,
 // the hidden 2.7 m spread (2.7^2 / 12) along it, and across it that spread times the heading
 // variance, the segment's 12 x 0.0004 / 1.8^2 combined with the camera's 0.01.

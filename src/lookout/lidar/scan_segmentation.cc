@@ -218,6 +218,8 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
   // is -u, beam index down.
   const double h1 = extent(true);
   const double h2 = extent(false);
+  o.hidden_start_m = h1;
+  o.hidden_end_m = h2;
   const double var_along =
       (h1 * h1 + h2 * h2) / 48.0 + (h2 - h1) * (h2 - h1) / 16.0 + sigma_r2 / 2.0;
   const double var_across = sigma_r2 / static_cast<double>(front.size());

@@ -131,6 +131,13 @@ TEST(ScanSegmentation, AHiddenEndWidensThePointAlongTheSide) {
   // sigma 0.31 m. The error, 0.5 m, is within two of them.
   EXPECT_NEAR(sigma, 0.31, 0.03);
   EXPECT_LT(error, 2.0 * sigma);
+  // Each end's extent is reported: the shadowed end's about 1.09 m, the free one's a beam
+  // spacing (which end is which follows the beams' order).
+  const double shadowed = std::max(hidden->hidden_start_m, hidden->hidden_end_m);
+  const double free_end = std::min(hidden->hidden_start_m, hidden->hidden_end_m);
+  EXPECT_NEAR(shadowed, 1.09, 0.1);
+  EXPECT_GT(free_end, 0.0);
+  EXPECT_LT(free_end, 0.06);
   // The post itself is seen whole: its neighbours return from the car, further away.
   const LidarObject* post = Nearest(partly, {4.0, 1.0});
   ASSERT_NE(post, nullptr);
