@@ -265,8 +265,8 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         // The lidar's point for the side the camera's box turns to it, the segment's middle
         // unless a corner view says another side faces (FacingSidePoint). The lidar object
         // itself keeps its own point: what the lidar alone measured.
-        const LidarSidePoint side =
-            FacingSidePoint(l, body, lidar.mount.translation, options.lidar_point);
+        const LidarSidePoint side = FacingSidePoint(l, as_fused.point_covariance, body,
+                                                    lidar.mount.translation, options.lidar_point);
         const Gaussian2 lidar_point{side.point_m, side.covariance};
         const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};
         const Gaussian2 position = FuseGaussians(lidar_point, stereo_point);

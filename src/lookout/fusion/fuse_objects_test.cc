@@ -60,16 +60,19 @@ LidarObjectFrame Frame(std::vector<LidarObject> objects) {
   return frame;
 }
 
-TEST(FuseObjectsTest, PairIsFusedByCovariances) {
-  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
-  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
-  // The covariances as given: the lidar point model (which would add a pedestrian's round
-  // body to the lidar's, TheLidarPointTakesTheCamerasClass, and the side's heading) is off
-  // here.
+// The covariances as given: the lidar point model (which would add a pedestrian's round body
+// to the lidar's, TheLidarPointTakesTheCamerasClass, and the side's heading) off.
+FusionOptions CovariancesAsGiven() {
   FusionOptions options;
   options.lidar_point.round_body = false;
   options.lidar_point.side_heading = false;
-  const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
+  return options;
+}
+
+TEST(FuseObjectsTest, PairIsFusedByCovariances) {
+  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.2, 0.1))});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, CovariancesAsGiven());
   ASSERT_EQ(result.frame.objects.size(), 1u);
   EXPECT_EQ(result.pairs, 1u);
   const FusedObject& f = result.frame.objects[0];
@@ -101,9 +104,7 @@ TEST(FuseObjectsTest, PairIsFusedByCovariances) {
 TEST(FuseObjectsTest, APairThatDisagreesHoldsItsDisagreement) {
   const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(16.1, 0.1))});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
-  FusionOptions options;
-  options.lidar_point.round_body = false;
-  options.lidar_point.side_heading = false;
+  FusionOptions options = CovariancesAsGiven();
   const Gaussian2 l{lidar.objects[0].point_m, lidar.objects[0].point_covariance};
   const Gaussian2 s{stereo[0].point.point_m, stereo[0].point.covariance};
   const double quantile = ChiSquareQuantile(options.disagreement_probability, 2.0);

@@ -29,11 +29,15 @@ void RequirePointModel(bool ok, const char* field, const char* what) {
 
 // The heading variance of a segment `visible_m` long along `u` with the object's covariance:
 // 12 times its offset variance over its length squared (the slope of a line fitted to evenly
-// spread points), combined with the camera's heading variance `yaw_variance` (0: none).
-double CombinedHeadingVariance(const Matrix2d& own, const Vector2d& u, double visible_m,
-                               double yaw_variance) {
+// spread points).
+double SegmentHeadingVariance(const Matrix2d& own, const Vector2d& u, double visible_m) {
   const Vector2d across(-u.y(), u.x());
-  const double segment = 12.0 * across.dot(own * across) / (visible_m * visible_m);
+  return 12.0 * across.dot(own * across) / (visible_m * visible_m);
+}
+
+// The segment's heading variance combined with the camera's `yaw_variance` (0: none): two
+// measurements of one heading.
+double CombinedHeadingVariance(double segment, double yaw_variance) {
   return yaw_variance > 0.0 ? 1.0 / (1.0 / segment + 1.0 / yaw_variance) : segment;
 }
 
@@ -197,8 +201,9 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
         const Vector2d v(-u.y(), u.x());
         covariance +=
             u.dot(covariance * u) *
-            CombinedHeadingVariance(object.point_covariance, u, visible, body.yaw_variance) * v *
-            v.transpose();
+            CombinedHeadingVariance(SegmentHeadingVariance(object.point_covariance, u, visible),
+                                    body.yaw_variance) *
+            v * v.transpose();
       }
     }
     return covariance;
@@ -229,13 +234,19 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
 LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body,
                                const Vector2d& lidar_origin_m,
                                const LidarPointModelOptions& options) {
+  return FacingSidePoint(object, LidarPointCovariance(object, body, lidar_origin_m, options), body,
+                         lidar_origin_m, options);
+}
+
+LidarSidePoint FacingSidePoint(const LidarObject& object, const Matrix2d& point_covariance,
+                               const PairedBody& body, const Vector2d& lidar_origin_m,
+                               const LidarPointModelOptions& options) {
   const bool round = RoundBodyRadius(body, options).has_value();
   // A segment the scan took for a round body's arc, moved to its nearest point, goes back where
   // the returns put it when the camera's box is no circle.
   const Vector2d unmoved = round ? Vector2d::Zero() : Vector2d(-object.round_body_shift_m);
-  LidarSidePoint seen{object.point_m + unmoved,
-                      LidarPointCovariance(object, body, lidar_origin_m, options),
-                      object.front_start_m + unmoved, object.front_end_m + unmoved};
+  LidarSidePoint seen{object.point_m + unmoved, point_covariance, object.front_start_m + unmoved,
+                      object.front_end_m + unmoved};
   const double facing = body.facing_side_m.norm();
   if (!options.corner_view || !(facing > 0.0) || round) return seen;
   const Vector2d segment = object.front_end_m - object.front_start_m;
@@ -256,14 +267,14 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
   // twice the middle's variance along (the two ends' errors taken equal).
   const double along_variance = along_segment.dot(own * along_segment);
   double corner_variance = 2.0 * along_variance;
-  const double segment_heading_variance = CombinedHeadingVariance(own, along_segment, visible, 0.0);
+  const double segment_heading_variance = SegmentHeadingVariance(own, along_segment, visible);
   // The camera's heading of the same side, turned to the segment's sense; the two combined by
   // their variances (the segment's alone when the camera gives none).
   Vector2d camera_side = body.facing_side_m / facing;
   if (across_facing) camera_side = Vector2d(-camera_side.y(), camera_side.x());
   if (camera_side.dot(along_segment) < 0.0) camera_side = -camera_side;
   const double heading_variance =
-      CombinedHeadingVariance(own, along_segment, visible, body.yaw_variance);
+      CombinedHeadingVariance(segment_heading_variance, body.yaw_variance);
   const double camera_weight =
       body.yaw_variance > 0.0
           ? segment_heading_variance / (segment_heading_variance + body.yaw_variance)

@@ -204,6 +204,11 @@ struct LidarSidePoint {
 LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body,
                                const Eigen::Vector2d& lidar_origin_m,
                                const LidarPointModelOptions& options);
+// The same with the object's point covariance under the model already at hand
+// (LidarPointCovariance with the same arguments): FuseObjects keeps it on the lidar object too.
+LidarSidePoint FacingSidePoint(const LidarObject& object, const Eigen::Matrix2d& point_covariance,
+                               const PairedBody& body, const Eigen::Vector2d& lidar_origin_m,
+                               const LidarPointModelOptions& options);
 
 // The most likely class of a lidar object's pmf (the first of equal ones, unknown first): the
 // class for objects the camera did not see, once the model is applied to them.
