@@ -24,6 +24,7 @@
 #include "lookout/app/stage_benchmarks.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/pose2.h"
+#include "lookout/grid/cluster_motion.h"
 #include "lookout/grid/extended_grid.h"
 #include "lookout/grid/inverse_sensor_model.h"
 #include "lookout/grid/reference_filter.h"
@@ -223,6 +224,26 @@ BENCHMARK(BM_ExtendedGridUpdateSimJunctionNoScanFlow)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The stage after step 7 alone (grid/cluster_motion.h: every rigid cluster measured whole from
+// the scan pair), on the junction cycle's state after its steps 2-7: what it adds to the update.
+void BM_ClusterMotionSimJunction(benchmark::State& state) {
+  const app::GridCycleInput& input = SimJunction();
+  ExtendedGrid after = input.before;
+  after.Update(input.z, input.dt_s);
+  ScanFlow flow = input.before.scan_flow();
+  flow.Prepare(input.z);
+  const FilterOptions& options = input.before.options();
+  GridLayers layers = after.layers();
+  for (auto _ : state) {
+    state.PauseTiming();
+    layers = after.layers();
+    state.ResumeTiming();
+    ApplyClusterMotion(layers, after.ids(), input.z, flow, input.dt_s, options.known_confidence,
+                       options.cluster_motion);
+  }
+}
+BENCHMARK(BM_ClusterMotionSimJunction)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_ReferenceUpdateSimJunction(benchmark::State& state) {
   const app::GridCycleInput& input = SimJunction();

@@ -103,6 +103,7 @@ struct PipelineChoices {
   std::string lidar_objects = "segmentation";
   std::string stereo_class = "on";
   std::string grid_scan_flow = "on";
+  std::string grid_cluster_motion = "on";
   std::string tracker = "mht";
   std::string risk_shape = "boxes";
   std::string pedestrian_model = "constant-velocity";
@@ -112,6 +113,7 @@ struct PipelineChoices {
     PipelineOptions o;
     o.stereo_class.enabled = stereo_class == "on";
     o.grid_filter.scan_flow.enabled = grid_scan_flow == "on";
+    o.grid_filter.cluster_motion.enabled = grid_cluster_motion == "on";
     o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
                                         : EgoPoseMode::kLidarLocalisation;
     o.lidar_objects =
@@ -144,6 +146,11 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
       ->add_option("--grid-scan-flow", choices.grid_scan_flow,
                    "The grid's search for newly seen occupancy guided by the scan pair's "
                    "displacement (grid/scan_flow.h): on (the default) or off")
+      ->check(CLI::IsMember({"on", "off"}));
+  command
+      ->add_option("--grid-cluster-motion", choices.grid_cluster_motion,
+                   "Each rigid cluster of the grid measured whole from the scan pair and its "
+                   "velocity given to its cells (grid/cluster_motion.h): on (the default) or off")
       ->check(CLI::IsMember({"on", "off"}));
   command
       ->add_option("--tracker", choices.tracker,

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "lookout/grid/association_prediction.h"
+#include "lookout/grid/cluster_motion.h"
 #include "lookout/grid/interaction_constraints.h"
 #include "lookout/grid/measurement_weighting.h"
 #include "lookout/grid/occupancy_update.h"
@@ -45,6 +46,9 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   std::array<std::span<float>, kNeighbourCount> rigidity;
   for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d] = layers_.Values(ids_.rigidity[d]);
   UpdateRigidity(associations, targets, cells, indexer, workspace_, rigidity);             // 7
+  // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
+  ApplyClusterMotion(layers_, ids_, z, flow_, dt_s, options_.known_confidence,
+                     options_.cluster_motion);
   std::array<std::span<float>, kGridClassCount> classes;
   for (std::size_t c = 0; c < kGridClassCount; ++c) classes[c] = layers_.Values(ids_.class_pmf[c]);
   UpdateClasses(associations, targets, cells, geometry(), indexer, options_,

@@ -50,6 +50,7 @@ void FilterOptions::Validate(const std::string& source) const {
   Require(new_stay_probability >= 0.0 && new_stay_probability < 1.0, source,
           "new_stay_probability", "must be in [0, 1)");
   scan_flow.Validate(source);
+  cluster_motion.Validate(source);
   Require(Positive(no_convergence_sigma), source, "no_convergence_sigma",
           "must be finite and > 0");
   Require(Positive(rigidity_sigma_cells), source, "rigidity_sigma_cells",

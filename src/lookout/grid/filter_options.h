@@ -7,6 +7,7 @@
 #include <array>
 #include <string>
 
+#include "lookout/grid/cluster_motion.h"
 #include "lookout/grid/scan_flow.h"
 
 namespace lookout::grid {
@@ -125,6 +126,10 @@ struct FilterOptions {
   // association puts most of its mass on its old cells and the free road around (odds 0.43
   // each), whose posterior stays 0.1-0.3 and drags the mean towards zero.
   bool survival_needs_evidence = false;
+
+  // --- between steps 7 and 8: each rigid cluster's displacement measured whole from the scan
+  // pair and given to its cells (cluster_motion.h says why and how).
+  ClusterMotionOptions cluster_motion;
 
   // --- step 8, classes
   double class_floor = 0.01;           // mixed in uniformly each cycle: classes stay revisable

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lookout/grid/association_prediction.h"
+#include "lookout/grid/cluster_motion.h"
 #include "lookout/grid/velocity_update.h"
 
 namespace lookout::grid {
@@ -329,6 +330,11 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
     }
     confidence[i] =
         static_cast<float>(static_cast<double>(seen[i]) * ((1.0 - alpha) * c_prev + alpha * c_obs));
+  }
+  // Beyond the paper and not an equation: shared with the fast path, like the windows.
+  if (flow != nullptr) {
+    ApplyClusterMotion(layers, ids, z, *flow, dt_s, options.known_confidence,
+                       options.cluster_motion);
   }
 }
 

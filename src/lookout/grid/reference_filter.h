@@ -5,8 +5,10 @@
 // equations as they read, in double precision, scatter-based (each source pushes its contributions
 // into dense accumulators), no active-set bookkeeping, no target index, and the literal O(M^6)
 // rigidity term of eq. 11 (every move of every neighbour for every move of the cell). It shares
-// with the fast path only the window choice (SourceWindow: a design choice, not an equation) and
-// the options. Step 8 (classes) is not part of it.
+// with the fast path only the window choice (SourceWindow: a design choice, not an equation),
+// the stage after step 7 that measures each rigid cluster whole (cluster_motion.h: beyond the
+// paper, no equation of it; run when a scan pair is given) and the options. Step 8 (classes) is
+// not part of it.
 
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"

@@ -149,6 +149,11 @@ class ScanFlow {
   bool HasPair() const { return has_pair_; }
   // Remembers z's hits for the next cycle.
   void Remember(const MeasurementGrid& z);
+  // The prepared pairs: the previous scan and this one, and the oldest remembered scan and this
+  // one (nullptr without it); this cycle's dt is long_lag_scale() times the long pair's baseline.
+  const HitMaps& short_pair() const { return maps_; }
+  const HitMaps* long_pair() const { return has_long_pair_ ? &long_maps_ : nullptr; }
+  double long_lag_scale() const { return long_lag_scale_; }
 
  private:
   ScanFlowOptions options_;

@@ -1,0 +1,221 @@
+#include "lookout/grid/cluster_motion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "lookout/core/input_error.h"
+#include "lookout/grid/filter_state.h"
+#include "lookout/grid/grid_objects.h"
+
+namespace lookout::grid {
+namespace {
+
+void Require(bool ok, const std::string& source, const std::string& field, const char* problem) {
+  if (!ok) throw InputError(source, 0, "grid.filter.cluster_motion." + field, problem);
+}
+
+bool InUnit(double v) { return v >= 0.0 && v <= 1.0; }  // NaN: false
+
+bool Inside(const HitMaps& m, int x, int y) {
+  return x >= 0 && y >= 0 && x < m.width && y < m.height;
+}
+
+std::size_t At(const HitMaps& m, int x, int y) {
+  return static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
+         static_cast<std::size_t>(x);
+}
+
+bool HitBefore(const HitMaps& m, const CellIndex& c) {
+  return Inside(m, c.ix, c.iy) && m.before[At(m, c.ix, c.iy)] != 0;
+}
+
+// The doubled score of one hit now explained by the previous scan at (x, y): 2 for a hit there,
+// 1 for a hit next to it, 0 otherwise.
+int BeforeScore(const HitMaps& m, int x, int y) {
+  if (HitBefore(m, {x, y})) return 2;
+  for (int ny = y - 1; ny <= y + 1; ++ny) {
+    for (int nx = x - 1; nx <= x + 1; ++nx) {
+      if (HitBefore(m, {nx, ny})) return 1;
+    }
+  }
+  return 0;
+}
+
+// The vertex of the parabola through (-1, a), (0, b), (1, c), b the largest: within
+// [-0.5, 0.5] (beyond, a neighbour would have been the best).
+double ParabolaVertex(double a, double b, double c) {
+  const double curvature = a - 2.0 * b + c;
+  if (!(curvature < 0.0)) return 0.0;  // flat: no sub-cell information
+  return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+}
+
+GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
+  GridObjectOptions c;
+  c.min_occupancy = o.min_occupancy;
+  c.min_speed_mps = o.min_speed_mps;
+  c.min_velocity_confidence = o.min_velocity_confidence;
+  c.min_link = o.min_link;
+  c.min_cells = o.min_cells;
+  return c;
+}
+
+}  // namespace
+
+void ClusterMotionOptions::Validate(const std::string& source) const {
+  Require(InUnit(blend), source, "blend", "must be in [0, 1]");
+  Require(search_half_cells >= 0 && search_half_cells <= 16, source, "search_half_cells",
+          "must be in [0, 16]");
+  Require(attach_cells >= 0 && attach_cells <= 8, source, "attach_cells", "must be in [0, 8]");
+  Require(min_hits >= 1, source, "min_hits", "must be >= 1");
+  Require(InUnit(min_matched_share), source, "min_matched_share", "must be in [0, 1]");
+  Require(std::isfinite(ambiguity_radius_cells) && ambiguity_radius_cells >= 0.0, source,
+          "ambiguity_radius_cells", "must be finite and >= 0");
+  Require(InUnit(ambiguity_share), source, "ambiguity_share", "must be in [0, 1]");
+  ClusterOptions(*this).Validate(source);
+}
+
+ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,
+                                   const CellIndex& predicted, int search_half,
+                                   const ClusterMotionOptions& options) {
+  ClusterMotion out;
+  out.hits = static_cast<int>(hits_now.size());
+  if (out.hits < options.min_hits || maps.width == 0) return out;
+  const int side = 2 * search_half + 1;
+  // Doubled scores (integral) of the offsets from `predicted`, row-major.
+  std::vector<int> scores(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0);
+  const auto score = [&](int ox, int oy) -> int& {
+    return scores[static_cast<std::size_t>((oy + search_half) * side + ox + search_half)];
+  };
+  const auto length2 = [&](int ox, int oy) {
+    const int x = predicted.ix + ox, y = predicted.iy + oy;
+    return x * x + y * y;
+  };
+  int best_score = -1;
+  CellIndex best{0, 0};  // offset from `predicted`
+  for (int oy = -search_half; oy <= search_half; ++oy) {
+    for (int ox = -search_half; ox <= search_half; ++ox) {
+      int s = 0;
+      for (const CellIndex& h : hits_now) {
+        s += BeforeScore(maps, h.ix - predicted.ix - ox, h.iy - predicted.iy - oy);
+      }
+      score(ox, oy) = s;
+      if (s > best_score || (s == best_score && length2(ox, oy) < length2(best.ix, best.iy))) {
+        best_score = s;
+        best = {ox, oy};
+      }
+    }
+  }
+  out.score = 0.5 * best_score;
+  if (out.score < options.min_matched_share * out.hits) return out;
+  const double radius2 = options.ambiguity_radius_cells * options.ambiguity_radius_cells;
+  for (int oy = -search_half; oy <= search_half; ++oy) {
+    for (int ox = -search_half; ox <= search_half; ++ox) {
+      const double ex = ox - best.ix, ey = oy - best.iy;
+      if (ex * ex + ey * ey <= radius2) continue;
+      if (score(ox, oy) >= options.ambiguity_share * best_score) return out;  // ambiguous
+    }
+  }
+  const auto score_or_zero = [&](int ox, int oy) {
+    return std::max(std::abs(ox), std::abs(oy)) > search_half ? 0.0
+                                                              : static_cast<double>(score(ox, oy));
+  };
+  const double b = best_score;
+  out.dx_cells =
+      predicted.ix + best.ix +
+      ParabolaVertex(score_or_zero(best.ix - 1, best.iy), b, score_or_zero(best.ix + 1, best.iy));
+  out.dy_cells =
+      predicted.iy + best.iy +
+      ParabolaVertex(score_or_zero(best.ix, best.iy - 1), b, score_or_zero(best.ix, best.iy + 1));
+  out.measured = true;
+  return out;
+}
+
+void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
+                        const ScanFlow& flow, double dt_s, double known_confidence,
+                        const ClusterMotionOptions& options) {
+  if (!options.enabled || !flow.HasPair()) return;
+  const GridObjectOptions cluster_options = ClusterOptions(options);
+  const std::vector<GridCluster> clusters = FindRigidClusters(
+      layers, ids, DynamicCellMask(layers, ids, cluster_options), cluster_options);
+  if (clusters.empty()) return;
+  const ScrollingGridGeometry& g = layers.geometry();
+  const std::span<float> occupancy = layers.Values(ids.occupancy);
+  const std::span<float> vx = layers.Values(ids.velocity_x_mps);
+  const std::span<float> vy = layers.Values(ids.velocity_y_mps);
+  const std::span<float> confidence = layers.Values(ids.velocity_confidence);
+  const double cells_per_mps = dt_s / g.cell_size_m();
+  const auto local_of = [&](std::size_t storage) {
+    return g.LocalFromGlobal(g.GlobalFromStorage(storage));
+  };
+  const auto hit_now = [&](std::size_t storage) { return z.p_occupied[storage] > 0.5f; };
+  enum : std::uint8_t { kFree = 0, kMember, kAttached };
+  std::vector<std::uint8_t> role(g.CellCount(), kFree);  // storage order, across clusters
+  std::vector<std::size_t> attached;
+  std::vector<CellIndex> hits;
+  for (const GridCluster& cluster : clusters) {
+    // The cluster's predicted displacement (its cells' occupancy-weighted mean velocity).
+    double weight = 0.0, mean_x = 0.0, mean_y = 0.0;
+    for (const std::size_t cell : cluster.cells) {
+      const auto o = static_cast<double>(occupancy[cell]);
+      weight += o;
+      mean_x += o * static_cast<double>(vx[cell]);
+      mean_y += o * static_cast<double>(vy[cell]);
+      role[cell] = kMember;
+    }
+    const double px = mean_x / weight * cells_per_mps;
+    const double py = mean_y / weight * cells_per_mps;
+
+    // H: its cells hit now, and the newly hit cells next to them.
+    attached.clear();
+    hits.clear();
+    for (const std::size_t cell : cluster.cells) {
+      const CellIndex c = local_of(cell);
+      if (hit_now(cell)) hits.push_back(c);
+      for (int y = c.iy - options.attach_cells; y <= c.iy + options.attach_cells; ++y) {
+        for (int x = c.ix - options.attach_cells; x <= c.ix + options.attach_cells; ++x) {
+          if (x < 0 || y < 0 || x >= g.width() || y >= g.height()) continue;
+          const std::size_t s = g.StorageIndexOfLocal({x, y});
+          if (role[s] != kFree || !hit_now(s) || HitBefore(flow.short_pair(), {x, y})) continue;
+          role[s] = kAttached;
+          attached.push_back(s);
+          hits.push_back({x, y});
+        }
+      }
+    }
+
+    // The baseline: the long pair for a body too slow to move whole cells in one cycle.
+    const HitMaps* maps = &flow.short_pair();
+    double per_cycle = 1.0;  // this cycle's share of the baseline
+    int half = options.search_half_cells;
+    const bool slow = std::max(std::abs(px), std::abs(py)) <
+                      static_cast<double>(flow.options().long_lag_below_cells);
+    if (slow && flow.long_pair() != nullptr) {
+      maps = flow.long_pair();
+      per_cycle = flow.long_lag_scale();
+      half = 2 * options.search_half_cells;
+    }
+    const CellIndex predicted{static_cast<int>(std::lround(px / per_cycle)),
+                              static_cast<int>(std::lround(py / per_cycle))};
+    const ClusterMotion m = MeasureClusterMotion(*maps, hits, predicted, half, options);
+    if (!m.measured) continue;
+    const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
+    const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
+    const bool moved = std::hypot(m.dx_cells, m.dy_cells) >= 1.0;
+    const double b = options.blend;
+    for (const std::size_t cell : cluster.cells) {
+      if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell))) continue;  // staying fits
+      vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
+      vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
+    }
+    for (const std::size_t cell : attached) {
+      if (static_cast<double>(confidence[cell]) >= known_confidence) continue;
+      vx[cell] = static_cast<float>(body_vx);
+      vy[cell] = static_cast<float>(body_vy);
+      confidence[cell] = static_cast<float>(known_confidence);
+    }
+  }
+}
+
+}  // namespace lookout::grid

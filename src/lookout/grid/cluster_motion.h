@@ -1,0 +1,107 @@
+#pragma once
+
+// Beyond the paper: each rigid cluster's displacement measured as one body from the scan pair,
+// and given to its cells (a stage between the paper's steps 7 and 8, docs/grid.md "A body's
+// motion measured whole").
+//
+// Why: a cell's velocity (eq. 14) is the mean displacement of the mass that reached it. Along a
+// surface that slides along itself every displacement fits the scan alike (the aperture
+// problem), so a walker's arc or a car's side cannot tell its speed along itself; eq. 14 then
+// reads the Gaussian prior of eq. 8 cut by the free space behind the body, a velocity that lags
+// the truth and is carried along the body with the mass. The crossing group's walkers read
+// 0.5 m/s RMS off their 1.1 m/s. The body's hits together (an arc with its two ends, a side
+// with a front) fit the previous scan's hits at one displacement only; a body whose hits are a
+// straight line with no end in view fits many, and is left to eq. 14.
+//
+// The measurement, for the body's hits now H (window-local cells):
+//   score(d) = sum over h in H of 1 if the previous scan hit h - d, 1/2 if it hit next to it
+//              (a return moves within its cell; the beams sample a moved surface elsewhere);
+//   best     = the highest score within +-search_half of the predicted displacement (ties: the
+//              shortest displacement, then the first in row order);
+//   measured when score(best) >= min_matched_share |H|, |H| >= min_hits, and no displacement
+//              farther than ambiguity_radius_cells from best scores ambiguity_share of it;
+//   sub-cell by the vertex of the parabola through the scores at best and its two neighbours,
+//              along each axis (clamped to half a cell): whole-cell matching alone quantises a
+//              walker's 0.6 cell a cycle to 0 or 1.
+//
+// The stage, per cluster (grid_objects.h's stages 1-2 with cluster_options: dynamic cells
+// linked by eq. 15's D):
+//   - H: the cluster's cells this scan hits, and the hits within attach_cells of them that the
+//     previous scan did not hit (the body arriving: a car's newly seen front; a wall beside a
+//     walker, hit scan after scan, is not attached);
+//   - the baseline: one cycle, or the scan pair's long baseline (scan_flow.h) when the cluster's
+//     predicted displacement is under its long_lag_below_cells a cycle, scaled by the stamps;
+//   - measured: each cluster cell's velocity <- (1 - blend) V + blend v_body, except a cell this
+//     scan hits where the baseline's scan hit too although the body moved a cell or more since
+//     (staying explains it as well: a wall cell that rigidity links joined to a walker); each
+//     attached hit with no trusted velocity of its own (confidence under the filter's
+//     known_confidence) takes v_body and that confidence, so the next cycle moves it with the
+//     body.
+//
+// Deterministic: clusters in window order, one thread.
+
+#include <span>
+#include <string>
+
+#include "lookout/core/grid_geometry.h"
+#include "lookout/grid/scan_flow.h"
+
+namespace lookout::grid {
+
+class GridLayers;
+struct FilterLayerIds;
+struct MeasurementGrid;
+
+struct ClusterMotionOptions {
+  // On by default since 2026-12-04: velocity RMSE better in 9 of the catalogue's 11 scenarios
+  // with movers, the crossing group's 0.86 -> 0.74 m/s (docs/grid.md). --grid-cluster-motion off.
+  bool enabled = true;
+  // The body's measured velocity against the cell's own: a half keeps one cycle's quantisation
+  // (a cell's worth, 1.9 m/s at 0.15 m and 12.5 Hz over one cycle) from jolting the cells.
+  double blend = 0.5;
+  // Displacements searched around the cluster's predicted one, cells (over the long baseline:
+  // twice this).
+  int search_half_cells = 3;
+  // Hits this close to a cluster cell (Chebyshev, cells) join its body: a car's front face seen
+  // for the first time lies a few cells ahead of the cells it already moved.
+  int attach_cells = 3;
+  int min_hits = 4;
+  double min_matched_share = 0.6;
+  double ambiguity_radius_cells = 1.5;
+  double ambiguity_share = 0.8;
+  // The clusters (grid_objects.h, GridObjectOptions): cells above min_occupancy that move faster
+  // than min_speed_mps with at least min_velocity_confidence (the filter's known_confidence:
+  // tracked cells), linked by D above min_link, at least min_cells of them.
+  double min_occupancy = 0.6;
+  double min_speed_mps = 0.5;
+  double min_velocity_confidence = 0.25;
+  double min_link = 0.05;
+  int min_cells = 3;
+
+  // Throws lookout::InputError naming the first field out of range
+  // (grid.filter.cluster_motion.<field>).
+  void Validate(const std::string& source = "cluster motion options") const;
+};
+
+struct ClusterMotion {
+  bool measured = false;
+  // The displacement over the baseline of the maps measured, cells (sub-cell).
+  double dx_cells = 0.0;
+  double dy_cells = 0.0;
+  int hits = 0;        // |H|
+  double score = 0.0;  // score(best)
+};
+
+// The measurement above: `hits_now` against `maps.before` (HitMaps' window-local cells),
+// displacements within +-search_half of `predicted`. Pure.
+ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,
+                                   const CellIndex& predicted, int search_half,
+                                   const ClusterMotionOptions& options);
+
+// The stage above on `layers` (velocity and confidence), with `flow` prepared for `z` (before
+// ScanFlow::Remember), dt_s after the previous cycle. Nothing without a scan pair.
+void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
+                        const ScanFlow& flow, double dt_s, double known_confidence,
+                        const ClusterMotionOptions& options);
+
+}  // namespace lookout::grid
