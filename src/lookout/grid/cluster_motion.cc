@@ -12,23 +12,24 @@
 namespace lookout::grid {
 namespace {
 
-void Require(bool ok, const std::string& source, const std::string& field, const char* problem) {
+void RequireClusterMotionOption(bool ok, const std::string& source, const std::string& field,
+                                const char* problem) {
   if (!ok) throw InputError(source, 0, "grid.filter.cluster_motion." + field, problem);
 }
 
-bool InUnit(double v) { return v >= 0.0 && v <= 1.0; }  // NaN: false
+bool WithinUnit(double v) { return v >= 0.0 && v <= 1.0; }  // NaN: false
 
-bool Inside(const HitMaps& m, int x, int y) {
+bool InsideMaps(const HitMaps& m, int x, int y) {
   return x >= 0 && y >= 0 && x < m.width && y < m.height;
 }
 
-std::size_t At(const HitMaps& m, int x, int y) {
+std::size_t MapIndex(const HitMaps& m, int x, int y) {
   return static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
          static_cast<std::size_t>(x);
 }
 
 bool HitBefore(const HitMaps& m, const CellIndex& c) {
-  return Inside(m, c.ix, c.iy) && m.before[At(m, c.ix, c.iy)] != 0;
+  return InsideMaps(m, c.ix, c.iy) && m.before[MapIndex(m, c.ix, c.iy)] != 0;
 }
 
 // The doubled score of one hit now explained by the previous scan at (x, y): 2 for a hit there,
@@ -64,15 +65,18 @@ GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
 }  // namespace
 
 void ClusterMotionOptions::Validate(const std::string& source) const {
-  Require(InUnit(blend), source, "blend", "must be in [0, 1]");
-  Require(search_half_cells >= 0 && search_half_cells <= 16, source, "search_half_cells",
-          "must be in [0, 16]");
-  Require(attach_cells >= 0 && attach_cells <= 8, source, "attach_cells", "must be in [0, 8]");
-  Require(min_hits >= 1, source, "min_hits", "must be >= 1");
-  Require(InUnit(min_matched_share), source, "min_matched_share", "must be in [0, 1]");
-  Require(std::isfinite(ambiguity_radius_cells) && ambiguity_radius_cells >= 0.0, source,
-          "ambiguity_radius_cells", "must be finite and >= 0");
-  Require(InUnit(ambiguity_share), source, "ambiguity_share", "must be in [0, 1]");
+  RequireClusterMotionOption(WithinUnit(blend), source, "blend", "must be in [0, 1]");
+  RequireClusterMotionOption(search_half_cells >= 0 && search_half_cells <= 16, source,
+                             "search_half_cells", "must be in [0, 16]");
+  RequireClusterMotionOption(attach_cells >= 0 && attach_cells <= 8, source, "attach_cells",
+                             "must be in [0, 8]");
+  RequireClusterMotionOption(min_hits >= 1, source, "min_hits", "must be >= 1");
+  RequireClusterMotionOption(WithinUnit(min_matched_share), source, "min_matched_share",
+                             "must be in [0, 1]");
+  RequireClusterMotionOption(std::isfinite(ambiguity_radius_cells) && ambiguity_radius_cells >= 0.0,
+                             source, "ambiguity_radius_cells", "must be finite and >= 0");
+  RequireClusterMotionOption(WithinUnit(ambiguity_share), source, "ambiguity_share",
+                             "must be in [0, 1]");
   ClusterOptions(*this).Validate(source);
 }
 

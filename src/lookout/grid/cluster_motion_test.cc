@@ -15,27 +15,27 @@
 namespace lookout::grid {
 namespace {
 
-constexpr double kCellM = 0.15;
-constexpr double kDtS = 0.08;
-constexpr TimeNs kDtNs = 80'000'000;
+constexpr double kClusterCellM = 0.15;
+constexpr double kClusterDtS = 0.08;
+constexpr TimeNs kClusterDtNs = 80'000'000;
 
 // Hit maps of `width` x `height` cells with the previous scan's hits `before` (this scan's are
 // not read by the measurement: it takes them as its argument).
-HitMaps Before(int width, int height, const std::vector<CellIndex>& before) {
+HitMaps HitsBefore(int width, int height, const std::vector<CellIndex>& before) {
   HitMaps m;
   m.Reset(width, height);
   for (const CellIndex& c : before) m.AddBefore(c.ix, c.iy);
   return m;
 }
 
-std::vector<CellIndex> Shifted(const std::vector<CellIndex>& cells, int dx, int dy) {
+std::vector<CellIndex> ShiftedCells(const std::vector<CellIndex>& cells, int dx, int dy) {
   std::vector<CellIndex> out;
   for (const CellIndex& c : cells) out.push_back({c.ix + dx, c.iy + dy});
   return out;
 }
 
 // A car's side (12 cells along x) and front (6 cells along y) as the lidar sees them: an L.
-std::vector<CellIndex> CarOutline() {
+std::vector<CellIndex> CarOutlineCells() {
   std::vector<CellIndex> l;
   for (int x = 20; x < 32; ++x) l.push_back({x, 20});
   for (int y = 21; y < 27; ++y) l.push_back({20, y});
@@ -43,9 +43,9 @@ std::vector<CellIndex> CarOutline() {
 }
 
 TEST(MeasureClusterMotionTest, AnLMovedByWholeCellsIsMeasuredAtItsDisplacement) {
-  const std::vector<CellIndex> before = CarOutline();
-  const HitMaps maps = Before(64, 64, before);
-  const std::vector<CellIndex> now = Shifted(before, 4, -3);
+  const std::vector<CellIndex> before = CarOutlineCells();
+  const HitMaps maps = HitsBefore(64, 64, before);
+  const std::vector<CellIndex> now = ShiftedCells(before, 4, -3);
   // Predicted one cell off in each axis: the search finds the rest.
   const ClusterMotion m = MeasureClusterMotion(maps, now, {3, -2}, 3, {});
   ASSERT_TRUE(m.measured);
@@ -59,27 +59,27 @@ TEST(MeasureClusterMotionTest, AnLMovedByWholeCellsIsMeasuredAtItsDisplacement) 
 TEST(MeasureClusterMotionTest, AStraightSideAloneIsAmbiguousAlongItself) {
   std::vector<CellIndex> side;
   for (int x = 5; x < 45; ++x) side.push_back({x, 20});
-  const HitMaps maps = Before(64, 64, side);
+  const HitMaps maps = HitsBefore(64, 64, side);
   // Moved by 3 cells along itself: every shift along it explains nearly every hit.
-  const ClusterMotion m = MeasureClusterMotion(maps, Shifted(side, 3, 0), {2, 0}, 3, {});
+  const ClusterMotion m = MeasureClusterMotion(maps, ShiftedCells(side, 3, 0), {2, 0}, 3, {});
   EXPECT_FALSE(m.measured);
   // Across itself it is no less a line: still not measured (the caller keeps eq. 14's velocity).
-  const ClusterMotion across = MeasureClusterMotion(maps, Shifted(side, 0, 2), {0, 2}, 3, {});
+  const ClusterMotion across = MeasureClusterMotion(maps, ShiftedCells(side, 0, 2), {0, 2}, 3, {});
   EXPECT_FALSE(across.measured);
 }
 
 TEST(MeasureClusterMotionTest, TooFewHitsOrNoMatchAreNotMeasured) {
-  const std::vector<CellIndex> before = CarOutline();
-  const HitMaps maps = Before(64, 64, before);
+  const std::vector<CellIndex> before = CarOutlineCells();
+  const HitMaps maps = HitsBefore(64, 64, before);
   const std::vector<CellIndex> three(before.begin(), before.begin() + 3);
-  EXPECT_FALSE(MeasureClusterMotion(maps, Shifted(three, 1, 0), {1, 0}, 3, {}).measured);
-  // Hits far from anything the previous scan saw (beyond the search): no displacement explains
-  // them.
-  EXPECT_FALSE(MeasureClusterMotion(maps, Shifted(before, 20, 20), {0, 0}, 3, {}).measured);
+  EXPECT_FALSE(MeasureClusterMotion(maps, ShiftedCells(three, 1, 0), {1, 0}, 3, {}).measured);
+  // HitsMeasurement far from anything the previous scan saw (beyond the search): no displacement
+  // explains them.
+  EXPECT_FALSE(MeasureClusterMotion(maps, ShiftedCells(before, 20, 20), {0, 0}, 3, {}).measured);
 }
 
 // The cells a dense outline of a disc's near half falls in, the disc's centre at (cx, cy) cells.
-std::vector<CellIndex> ArcCells(double cx, double cy, double radius) {
+std::vector<CellIndex> DiscArcCells(double cx, double cy, double radius) {
   std::vector<CellIndex> cells;
   for (int k = 0; k <= 60; ++k) {
     const double a = M_PI / 2.0 + M_PI * k / 60.0;  // the half facing -x
@@ -93,8 +93,8 @@ std::vector<CellIndex> ArcCells(double cx, double cy, double radius) {
 // A walker's arc moved by 2.5 cells: whole-cell matching alone says 2 or 3 (0.5 cell off); the
 // parabola through the scores finds the half cell.
 TEST(MeasureClusterMotionTest, SubCellDisplacementFromTheScoresParabola) {
-  const HitMaps maps = Before(64, 64, ArcCells(20.3, 20.3, 2.4));
-  const std::vector<CellIndex> now = ArcCells(22.8, 20.3, 2.4);
+  const HitMaps maps = HitsBefore(64, 64, DiscArcCells(20.3, 20.3, 2.4));
+  const std::vector<CellIndex> now = DiscArcCells(22.8, 20.3, 2.4);
   const ClusterMotion m = MeasureClusterMotion(maps, now, {2, 0}, 3, {});
   ASSERT_TRUE(m.measured);
   std::printf("arc moved 2.5 cells: measured (%.3f, %.3f)\n", m.dx_cells, m.dy_cells);
@@ -123,8 +123,8 @@ TEST(ClusterMotionOptionsTest, ValidateNamesTheField) {
 // A filter state by hand: a moving block of cells (a body) whose velocity lags the truth, and a
 // wall beside it that rigidity links joined to it and that carries the body's wrong velocity
 // (as a wall does beside a walker in the crowd scenario).
-struct HandMadeState {
-  GridLayers layers{ScrollingGridGeometry(kCellM, 48, 48, CellIndex{0, 0})};
+struct HandMadeFilterState {
+  GridLayers layers{ScrollingGridGeometry(kClusterCellM, 48, 48, CellIndex{0, 0})};
   FilterLayerIds ids = AddFilterLayers(layers);
 
   void Set(int x, int y, float occupancy, float vx, float confidence) {
@@ -143,8 +143,8 @@ struct HandMadeState {
   }
 };
 
-MeasurementGrid Hits(const ScrollingGridGeometry& g, const std::vector<CellIndex>& hits,
-                     TimeNs stamp) {
+MeasurementGrid HitsMeasurement(const ScrollingGridGeometry& g, const std::vector<CellIndex>& hits,
+                                TimeNs stamp) {
   MeasurementGrid z;
   z.geometry = g;
   z.stamp = stamp;
@@ -155,7 +155,7 @@ MeasurementGrid Hits(const ScrollingGridGeometry& g, const std::vector<CellIndex
 }
 
 TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeepsItsOwn) {
-  HandMadeState state;
+  HandMadeFilterState state;
   // The body: a 3 x 3 block at x 20-22, y 20-22, truly moving 2 cells a cycle along x
   // (3.75 m/s), believed at 1 m/s. The wall: y 18, x 18-23, static, believed at 1 m/s too.
   std::vector<CellIndex> body_now, wall;
@@ -173,17 +173,17 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   state.Set(21, 19, 0.9f, 1.0f, 0.6f);
   const CellIndex arriving{23, 21};  // hit now, not before: the body's front arriving
   const ScrollingGridGeometry& g = state.layers.geometry();
-  std::vector<CellIndex> before = Shifted(body_now, -2, 0);
+  std::vector<CellIndex> before = ShiftedCells(body_now, -2, 0);
   before.insert(before.end(), wall.begin(), wall.end());
   std::vector<CellIndex> now = body_now;
   now.insert(now.end(), wall.begin(), wall.end());
   now.push_back(arriving);
   ScanFlow flow;
-  flow.Prepare(Hits(g, before, kDtNs));
-  flow.Remember(Hits(g, before, kDtNs));
-  const MeasurementGrid z = Hits(g, now, 2 * kDtNs);
+  flow.Prepare(HitsMeasurement(g, before, kClusterDtNs));
+  flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
+  const MeasurementGrid z = HitsMeasurement(g, now, 2 * kClusterDtNs);
   flow.Prepare(z);
-  ApplyClusterMotion(state.layers, state.ids, z, flow, kDtS, 0.25, {});
+  ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, {});
 
   // The body: half way from 1 m/s to what the pair measured (3.75 m/s, the wall's hits in the
   // body's score pulling it towards staying), except its trailing column, which the previous
@@ -203,11 +203,11 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   EXPECT_FLOAT_EQ(state.Confidence(arriving.ix, arriving.iy), 0.25f);
 
   // Off: nothing changes.
-  HandMadeState off;
+  HandMadeFilterState off;
   off.Set(21, 21, 0.9f, 1.0f, 0.6f);
   ClusterMotionOptions disabled;
   disabled.enabled = false;
-  ApplyClusterMotion(off.layers, off.ids, z, flow, kDtS, 0.25, disabled);
+  ApplyClusterMotion(off.layers, off.ids, z, flow, kClusterDtS, 0.25, disabled);
   EXPECT_EQ(off.Vx(21, 21), 1.0f);
 }
 
@@ -241,20 +241,20 @@ double WalkerVelocityRms(const FilterOptions& options, int from, int to) {
   const Eigen::Vector2d v(0.0, 1.1);  // the crossing group's walkers
   const Eigen::Vector2d start(8.0, -2.0);
   constexpr double kRadiusM = 0.25;
-  ExtendedGrid grid(ScrollingGridGeometry(kCellM, 80, 80, CellIndex{0, -40}), options);
+  ExtendedGrid grid(ScrollingGridGeometry(kClusterCellM, 80, 80, CellIndex{0, -40}), options);
   double sum2 = 0.0;
   int n = 0;
   for (int k = 0; k < to; ++k) {
-    const Eigen::Vector2d p = start + v * (k * kDtS);
-    MeasurementGrid z = ComputeInverseSensorModel(ScanOfDisc(p, kRadiusM, (k + 1) * kDtNs), Pose2(),
-                                                  grid.geometry(), {});
-    z.stamp = (k + 1) * kDtNs;
-    grid.Update(z, kDtS);
+    const Eigen::Vector2d p = start + v * (k * kClusterDtS);
+    MeasurementGrid z = ComputeInverseSensorModel(ScanOfDisc(p, kRadiusM, (k + 1) * kClusterDtNs),
+                                                  Pose2(), grid.geometry(), {});
+    z.stamp = (k + 1) * kClusterDtNs;
+    grid.Update(z, kClusterDtS);
     if (k < from) continue;
     const ScrollingGridGeometry& g = grid.geometry();
     for (std::size_t s = 0; s < g.CellCount(); ++s) {
       const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromStorage(s));
-      if ((c - p).norm() > kRadiusM + 0.5 * kCellM) continue;
+      if ((c - p).norm() > kRadiusM + 0.5 * kClusterCellM) continue;
       if (grid.layers().Values(grid.ids().occupancy)[s] <= 0.5f) continue;
       const Eigen::Vector2d e(
           static_cast<double>(grid.layers().Values(grid.ids().velocity_x_mps)[s]) - v.x(),
