@@ -55,7 +55,7 @@ void GridScorer::Observe(const GridStage& stage, const sim::TruthFrame& truth_wo
   const sim::TruthFrame truth = eval::TruthFrameIn(truth_world, odom_from_world_);
   belief_ = BeliefOf(stage.grid());
   const sim::TruthRaster raster = sim::RasteriseTruth(truth, static_world_odom_, belief_.geometry);
-  visibility_.Observe(truth);
+  visibility_.Observe(truth, belief_.geometry);
   velocity_.AddFrame(belief_, raster);
   // The figure: velocities scored once an actor has been visible for a second, the
   // time any filter needs to learn a velocity from positions.

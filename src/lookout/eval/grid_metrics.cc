@@ -255,9 +255,11 @@ std::optional<double> OccupancyBrierAccumulator::Value() const {
   return total_.sum_squared / static_cast<double>(total_.count);
 }
 
-void ActorVisibilityClock::Observe(const sim::TruthFrame& frame) {
+void ActorVisibilityClock::Observe(const sim::TruthFrame& frame, const GridGeometry& window) {
   for (const sim::ActorTruth& a : frame.actors) {
-    if (a.visible_fraction_lidar > 0.0) first_visible_.try_emplace(a.index, frame.stamp);
+    if (a.visible_fraction_lidar > 0.0 && window.CellAt(ShapeCentre(a.footprint)).has_value()) {
+      first_visible_.try_emplace(a.index, frame.stamp);
+    }
   }
 }
 

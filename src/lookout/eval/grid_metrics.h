@@ -165,12 +165,16 @@ class OccupancyBrierAccumulator {
   SquaredErrorSum total_;
 };
 
-// When each actor was first seen by the lidar (visible_fraction_lidar > 0), for the velocity
-// RMSE "after the first second of visibility": feed it every truth frame in time order, then
-// ask with the stamp of the frame being scored.
+// When each actor was first seen by the lidar inside the grid's window (visible_fraction_lidar
+// > 0 with its footprint centre in the window), for the velocity RMSE "after the first second
+// of visibility": feed it every truth frame in time order, then ask with the stamp of the frame
+// being scored. Inside the window: the grid measures nothing of an actor before it enters, however
+// long the lidar has seen it beyond (a 20 m/s car in view from 120 m crosses the 60 m window in
+// 1.2 s; counted from its first sight by the lidar, its whole passage is "after the first
+// second", its first cells in the grid included).
 class ActorVisibilityClock {
  public:
-  void Observe(const sim::TruthFrame& frame);
+  void Observe(const sim::TruthFrame& frame, const GridGeometry& window);
   std::optional<TimeNs> FirstVisible(int owner) const;
   // True when the actor was first visible at least min_visible_s before `now`.
   bool VisibleForAtLeast(int owner, double min_visible_s, TimeNs now) const;

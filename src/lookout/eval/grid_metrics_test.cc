@@ -142,12 +142,15 @@ TEST(GridMetricsTest, VisibilityClockGatesCountingAfterFirstSecond) {
   f0.actors[0].visible_fraction_lidar = 0.0;
   f0.actors[1].index = 1;
   f0.actors[1].visible_fraction_lidar = 0.3;
+  for (sim::ActorTruth& a : f0.actors)
+    a.footprint = sim::Shape::Circle(Vector2d(1.0, 1.0), 0.3, a.index);
   sim::TruthFrame f1 = f0;
   f1.stamp = FromSeconds(0.5);
   f1.actors[0].visible_fraction_lidar = 1.0;
+  const GridGeometry window = Geometry(4, 4, 1.0);  // both actors inside
   ActorVisibilityClock clock;
-  clock.Observe(f0);
-  clock.Observe(f1);
+  clock.Observe(f0, window);
+  clock.Observe(f1, window);
   EXPECT_EQ(clock.FirstVisible(0), FromSeconds(0.5));
   EXPECT_EQ(clock.FirstVisible(1), TimeNs{0});
   EXPECT_FALSE(clock.FirstVisible(7).has_value());
@@ -156,6 +159,30 @@ TEST(GridMetricsTest, VisibilityClockGatesCountingAfterFirstSecond) {
   EXPECT_TRUE(at_1_4(1));
   EXPECT_TRUE(clock.VisibleForAtLeast(0, 1.0, FromSeconds(1.5)));
   EXPECT_FALSE(clock.VisibleForAtLeast(7, 0.0, FromSeconds(100.0)));
+}
+
+// The grid measures nothing of an actor outside its window: the clock starts when a seen actor
+// is inside it.
+TEST(GridMetricsTest, VisibilityClockStartsInsideTheWindow) {
+  const GridGeometry window = Geometry(4, 4, 1.0);  // [0, 4) x [0, 4) m
+  sim::TruthFrame f;
+  f.actors.resize(1);
+  f.actors[0].index = 3;
+  f.actors[0].visible_fraction_lidar = 1.0;
+  ActorVisibilityClock clock;
+  for (int k = 0; k < 5; ++k) {  // seen from 8 m out, coming in at 2 m a second
+    f.stamp = FromSeconds(0.5 * k);
+    f.actors[0].footprint = sim::Shape::Circle(Vector2d(8.0 - 1.0 * k, 1.0), 0.3, 3);
+    clock.Observe(f, window);
+  }
+  // Centres 8, 7, 6, 5, 4 m: none inside yet (the window ends before 4 m).
+  EXPECT_FALSE(clock.FirstVisible(3).has_value());
+  f.stamp = FromSeconds(2.5);
+  f.actors[0].footprint = sim::Shape::Circle(Vector2d(3.0, 1.0), 0.3, 3);
+  clock.Observe(f, window);
+  EXPECT_EQ(clock.FirstVisible(3), FromSeconds(2.5));
+  EXPECT_FALSE(clock.VisibleForAtLeast(3, 1.0, FromSeconds(3.0)));
+  EXPECT_TRUE(clock.VisibleForAtLeast(3, 1.0, FromSeconds(3.5)));
 }
 
 TEST(GridMetricsTest, StaticFastConfidentCellCountsAsFalseDynamic) {
