@@ -61,7 +61,7 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
   no_returns_ += hits_.no_return_count;
   const Clock::time_point classified = Clock::now();
   const std::vector<lidar::ScanCluster> clusters =
-      lidar::ClusterScan(scan, options_.segmentation, options_.hits.min_range_m);
+      lidar::ClusterScan(scan, hits_.beam, options_.segmentation, options_.hits.min_range_m);
   // Motion the map cannot see (lidar/segment_motion.h), before the objects take the classes.
   const std::vector<bool> own_motion =
       lidar::OwnMotionEvidence(clusters, hits_.beam, options_.segment_motion);

@@ -31,7 +31,7 @@ struct Scene {
   ScanHitClasses classes;
 
   Scene() {
-    clusters = ClusterScan(scan, SegmentationOptions{}, 0.1);
+    clusters = ClusterScan(scan, {}, SegmentationOptions{}, 0.1);
     for (const ScanCluster& c : clusters) {
       const double x = ReturnPoint(scan, c.beams.front()).x();
       if (x < 15.0 && !car) car = &c;

@@ -274,6 +274,8 @@ void SegmentationOptions::Validate(const std::string& source) const {
         "must be finite and >= 0");
   check(std::isfinite(breakpoint_noise_sigmas) && breakpoint_noise_sigmas >= 0.0,
         "breakpoint_noise_sigmas", "must be finite and >= 0");
+  check(std::isfinite(class_break_m) && class_break_m >= 0.0, "class_break_m",
+        "must be finite and >= 0");
   check(max_gap_beams >= 0, "max_gap_beams", "must be >= 0");
   check(min_points >= 1, "min_points", "must be >= 1");
   check(std::isfinite(corner_split_m) && corner_split_m > 0.0, "corner_split_m",
@@ -294,8 +296,20 @@ double BreakpointDistance(double r_prev_m, double dphi_rad, const SegmentationOp
          noise;
 }
 
-std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOptions& options,
-                                     double min_range_m, SegmentationStats* stats) {
+std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitClass> classes,
+                                     const SegmentationOptions& options, double min_range_m,
+                                     SegmentationStats* stats) {
+  // One static and one not (dynamic, or unknown: a walker's edge return in cells the map has
+  // not settled): the map tells the two apart.
+  const auto classes_differ = [&](std::size_t a, std::size_t b) {
+    if (classes.empty()) return false;
+    const auto moving_or_unknown = [](HitClass c) {
+      return c == HitClass::kDynamic || c == HitClass::kUnknown;
+    };
+    const HitClass x = classes[a], y = classes[b];
+    return (x == HitClass::kStatic && moving_or_unknown(y)) ||
+           (y == HitClass::kStatic && moving_or_unknown(x));
+  };
   std::vector<ScanCluster> clusters;
   SegmentationStats local;
   ScanCluster current;
@@ -324,8 +338,11 @@ std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOp
       const std::size_t gap = i - last;
       const double r_prev = last_point.norm();
       const bool bridged = gap <= static_cast<std::size_t>(options.max_gap_beams) + 1;
-      if (!bridged || (p - last_point).norm() >
-                          BreakpointDistance(r_prev, static_cast<double>(gap) * dphi, options)) {
+      const double step = (p - last_point).norm();
+      const bool class_break =
+          options.class_break_m > 0.0 && step > options.class_break_m && classes_differ(last, i);
+      if (!bridged || class_break ||
+          step > BreakpointDistance(r_prev, static_cast<double>(gap) * dphi, options)) {
         finish();
       }
     }
@@ -373,7 +390,7 @@ LidarObjectFrame DescribeClusters(const LidarScan& scan, std::span<const ScanClu
 LidarObjectFrame SegmentScan(const LidarScan& scan, std::span<const HitClass> classes,
                              const Pose2& ego_pose, const SegmentationOptions& options,
                              double min_range_m, SegmentationStats* stats) {
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, options, min_range_m, stats);
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, classes, options, min_range_m, stats);
   return DescribeClusters(scan, clusters, classes, ego_pose, options);
 }
 

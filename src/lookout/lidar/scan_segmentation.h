@@ -55,6 +55,14 @@ struct SegmentationOptions {
   double breakpoint_incidence_rad = 10.0 * kPi / 180.0;
   double range_noise_m = 0.03;
   double breakpoint_noise_sigmas = 3.0;
+  // Two neighbouring returns the map calls one static and the other not (dynamic, or unknown:
+  // a walker's edge return in cells the map has not settled), further apart than this, are two
+  // objects whatever Borges-Aldon's distance allows: a walker passing behind
+  // a lamp post 0.5 m nearer at 17.6 m is within D_max (0.54 m there), and one cluster of the
+  // two gave the walker's camera object the post's face as its lidar point
+  // (docs/fusion.md). Within one body neighbouring returns lie closer (a walker's arc: a few
+  // centimetres at that range). 0: off.
+  double class_break_m = 0.3;
   // Missing returns (no return, NaN) bridged inside one cluster.
   int max_gap_beams = 2;
   // Clusters with fewer returns are dropped (a lone return is noise as often as an object).
@@ -102,9 +110,11 @@ struct SegmentationStats {
   std::int64_t no_returns = 0;     // beams that were not returns
 };
 
-// The clusters of `scan` (every return, whatever its class). Pure; O(beams).
-std::vector<ScanCluster> ClusterScan(const LidarScan& scan, const SegmentationOptions& options,
-                                     double min_range_m, SegmentationStats* stats = nullptr);
+// The clusters of `scan` (every return, whatever its class); `classes` (one per beam, or empty:
+// none known) only splits at class_break_m. Pure; O(beams).
+std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitClass> classes,
+                                     const SegmentationOptions& options, double min_range_m,
+                                     SegmentationStats* stats = nullptr);
 
 // Whether any beam of `cluster` is dynamic in `classes` (empty: none is).
 bool HasDynamicBeam(const ScanCluster& cluster, std::span<const HitClass> classes);

@@ -275,8 +275,34 @@ TEST(ScanSegmentation, TheBreakpointDistanceGrowsWithRange) {
               10.0 * std::sin(0.25 * kDeg) / std::sin(9.75 * kDeg) + 0.09, 1e-12);
   // The same 0.4 m step in depth separates two objects at 5 m but not at 40 m, where
   // neighbouring beams on one oblique surface are that far apart.
-  EXPECT_EQ(ClusterScan(StepScan(5.0, 0.4), o, 0.1).size(), 2u);
-  EXPECT_EQ(ClusterScan(StepScan(40.0, 0.4), o, 0.1).size(), 1u);
+  EXPECT_EQ(ClusterScan(StepScan(5.0, 0.4), {}, o, 0.1).size(), 2u);
+  EXPECT_EQ(ClusterScan(StepScan(40.0, 0.4), {}, o, 0.1).size(), 1u);
+}
+
+// occluded-pedestrian's lamp post at 17.6 m with the walker passing 0.5 m behind it: within
+// Borges-Aldon's distance there, one cluster without classes; the map calls the post's returns
+// static and the walker's not, and the class break parts them. Two returns of one class at the
+// same step stay together, and so do static and unknown returns closer than class_break_m.
+TEST(ScanSegmentation, AStaticReturnBesideAMovingOneBeyondTheClassBreakIsAnotherObject) {
+  const SegmentationOptions o;
+  const LidarScan scan = StepScan(17.6, 0.5);
+  ASSERT_EQ(ClusterScan(scan, {}, o, 0.1).size(), 1u);
+  std::vector<HitClass> classes(scan.ranges_m.size(), HitClass::kStatic);
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    if (scan.BeamAngle(i) >= 0.0) classes[i] = HitClass::kUnknown;  // the walker's side
+  }
+  const std::vector<ScanCluster> parted = ClusterScan(scan, classes, o, 0.1);
+  ASSERT_EQ(parted.size(), 2u);
+  EXPECT_EQ(classes[parted[0].beams.back()], HitClass::kStatic);
+  EXPECT_EQ(classes[parted[1].beams.front()], HitClass::kUnknown);
+  for (HitClass& c : classes) c = c == HitClass::kUnknown ? HitClass::kDynamic : c;
+  EXPECT_EQ(ClusterScan(scan, classes, o, 0.1).size(), 2u);
+  const std::vector<HitClass> one_class(scan.ranges_m.size(), HitClass::kDynamic);
+  EXPECT_EQ(ClusterScan(scan, one_class, o, 0.1).size(), 1u);
+  EXPECT_EQ(ClusterScan(StepScan(17.6, 0.25), classes, o, 0.1).size(), 1u);
+  SegmentationOptions off = o;
+  off.class_break_m = 0.0;
+  EXPECT_EQ(ClusterScan(scan, classes, off, 0.1).size(), 1u);
 }
 
 TEST(ScanSegmentation, NanInfiniteAndNegativeRangesAreSkippedAndCounted) {
@@ -287,13 +313,13 @@ TEST(ScanSegmentation, NanInfiniteAndNegativeRangesAreSkippedAndCounted) {
   scan.ranges_m[20] = -1.0f;
   scan.ranges_m[21] = inf;  // two missing in a row: still bridged (max_gap_beams = 2)
   SegmentationStats stats;
-  std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, 0.1, &stats);
+  std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, 0.1, &stats);
   EXPECT_EQ(clusters.size(), 1u);
   EXPECT_EQ(stats.no_returns, 3);
   EXPECT_EQ(clusters[0].beams.size(), 41u - 3u);
   // Three missing in a row split it.
   scan.ranges_m[22] = -inf;
-  clusters = ClusterScan(scan, SegmentationOptions{}, 0.1, &stats);
+  clusters = ClusterScan(scan, {}, SegmentationOptions{}, 0.1, &stats);
   EXPECT_EQ(clusters.size(), 2u);
   EXPECT_EQ(stats.no_returns, 4);
   // A scan of nothing but bad values gives no object and no crash.
@@ -309,7 +335,7 @@ TEST(ScanSegmentation, SmallClustersAreDroppedAndCounted) {
     if (i != 30) scan.ranges_m[i] = std::numeric_limits<float>::infinity();
   }
   SegmentationStats stats;
-  EXPECT_TRUE(ClusterScan(scan, SegmentationOptions{}, 0.1, &stats).empty());
+  EXPECT_TRUE(ClusterScan(scan, {}, SegmentationOptions{}, 0.1, &stats).empty());
   EXPECT_EQ(stats.dropped_small, 1);
 }
 

@@ -57,7 +57,7 @@ std::size_t ClusterAt(const LidarScan& scan, const std::vector<ScanCluster>& clu
 
 // The previous scan's segments, the one at `moving_x` moving by its own evidence (none: NaN).
 ScanSegments Previous(const LidarScan& scan, double moving_x, const Pose2& pose = Pose2()) {
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, kMinRange);
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, kMinRange);
   std::vector<bool> own(clusters.size(), false);
   if (!std::isnan(moving_x)) own[ClusterAt(scan, clusters, moving_x)] = true;
   const std::vector<int> none(clusters.size(), -1);
@@ -147,7 +147,7 @@ TEST(SegmentMotion, AMovingSegmentCarriesToWhereItWent) {
   // The car's returns land in space its body hid: unknown to the map. The wall is static.
   const ScanSegments previous = Previous(CastWithWall({CarAhead(12.0)}), 12.0);
   const LidarScan scan = CastWithWall({CarAhead(12.8)});
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, kMinRange);
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, kMinRange);
   ScanHitClasses classes = AllReturns(scan, HitClass::kStatic);
   const std::size_t car = ClusterAt(scan, clusters, 12.8);
   for (std::size_t i : clusters[car].beams) {
@@ -175,7 +175,7 @@ TEST(SegmentMotion, OnlyTheMutuallyNearestSegmentIsCarriedOnto) {
   const sim::Shape post = sim::Shape::Circle({10.0, 0.9 + 0.25 + 0.1}, 0.1, kStatic);
   const ScanSegments previous = Previous(CastWithWall({walker(0.0), post}), 9.75);
   const LidarScan scan = CastWithWall({walker(0.1), post});
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, kMinRange);
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, kMinRange);
   ScanHitClasses classes = AllReturns(scan, HitClass::kUnknown);
   const std::vector<int> carried =
       CarrySegmentMotion(previous, scan, Pose2(), clusters, SegmentMotionOptions{}, classes);
@@ -192,7 +192,7 @@ TEST(SegmentMotion, OnlyTheMutuallyNearestSegmentIsCarriedOnto) {
 TEST(SegmentMotion, NoCarryOntoMostlyStaticSegmentsNorAfterTooManyScans) {
   const ScanSegments moving = Previous(CastWithWall({CarAhead(12.0)}), 12.0);
   const LidarScan scan = CastWithWall({CarAhead(12.8)});
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, kMinRange);
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, kMinRange);
   const SegmentMotionOptions options;
   {
     ScanHitClasses classes = AllReturns(scan, HitClass::kStatic);  // the car's trace: mapped
@@ -213,7 +213,7 @@ TEST(SegmentMotion, NoCarryOntoMostlyStaticSegmentsNorAfterTooManyScans) {
 
 TEST(SegmentMotion, OwnEvidenceNeedsEnoughDynamicReturns) {
   const LidarScan scan = CastWithWall({CarAhead(12.0)});
-  const std::vector<ScanCluster> clusters = ClusterScan(scan, SegmentationOptions{}, kMinRange);
+  const std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, kMinRange);
   ScanHitClasses classes = AllReturns(scan, HitClass::kStatic);
   const std::size_t car = ClusterAt(scan, clusters, 12.0);
   const std::size_t wall = car == 0 ? 1 : 0;
