@@ -154,8 +154,13 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
     return g.LocalFromGlobal(g.GlobalFromStorage(storage));
   };
   const auto hit_now = [&](std::size_t storage) { return z.p_occupied[storage] > 0.5f; };
+  // Storage order, across clusters: every cluster's cells first, so that no cluster takes
+  // another's cells among its attached hits.
   enum : std::uint8_t { kFree = 0, kMember, kAttached };
-  std::vector<std::uint8_t> role(g.CellCount(), kFree);  // storage order, across clusters
+  std::vector<std::uint8_t> role(g.CellCount(), kFree);
+  for (const GridCluster& cluster : clusters) {
+    for (const std::size_t cell : cluster.cells) role[cell] = kMember;
+  }
   std::vector<std::size_t> attached;
   std::vector<CellIndex> hits;
   for (const GridCluster& cluster : clusters) {
@@ -166,7 +171,6 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
       weight += o;
       mean_x += o * static_cast<double>(vx[cell]);
       mean_y += o * static_cast<double>(vy[cell]);
-      role[cell] = kMember;
     }
     const double px = mean_x / weight * cells_per_mps;
     const double py = mean_y / weight * cells_per_mps;
