@@ -60,8 +60,12 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
   }
   no_returns_ += hits_.no_return_count;
   const Clock::time_point classified = Clock::now();
-  const std::vector<lidar::ScanCluster> clusters =
-      lidar::ClusterScan(scan, hits_.beam, options_.segmentation, options_.hits.min_range_m);
+  const std::vector<std::uint8_t> on_moving_trace =
+      previous_segments_ ? lidar::StaticOnMovingTrace(*previous_segments_, scan, state->pose,
+                                                      hits_.beam, options_.segment_motion)
+                         : std::vector<std::uint8_t>{};
+  const std::vector<lidar::ScanCluster> clusters = lidar::ClusterScan(
+      scan, hits_.beam, options_.segmentation, options_.hits.min_range_m, nullptr, on_moving_trace);
   // Motion the map cannot see (lidar/segment_motion.h), before the objects take the classes.
   const std::vector<bool> own_motion =
       lidar::OwnMotionEvidence(clusters, hits_.beam, options_.segment_motion);

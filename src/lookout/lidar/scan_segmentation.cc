@@ -298,17 +298,21 @@ double BreakpointDistance(double r_prev_m, double dphi_rad, const SegmentationOp
 
 std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitClass> classes,
                                      const SegmentationOptions& options, double min_range_m,
-                                     SegmentationStats* stats) {
+                                     SegmentationStats* stats,
+                                     std::span<const std::uint8_t> on_moving_trace) {
   // One static and one not (dynamic, or unknown: a walker's edge return in cells the map has
-  // not settled): the map tells the two apart.
+  // not settled): the map tells the two apart, unless the static one lies on a mover's trace.
+  const auto standing = [&](std::size_t i) {
+    return classes[i] == HitClass::kStatic &&
+           !(i < on_moving_trace.size() && on_moving_trace[i] != 0);
+  };
   const auto classes_differ = [&](std::size_t a, std::size_t b) {
     if (classes.empty()) return false;
     const auto moving_or_unknown = [](HitClass c) {
       return c == HitClass::kDynamic || c == HitClass::kUnknown;
     };
-    const HitClass x = classes[a], y = classes[b];
-    return (x == HitClass::kStatic && moving_or_unknown(y)) ||
-           (y == HitClass::kStatic && moving_or_unknown(x));
+    return (standing(a) && moving_or_unknown(classes[b])) ||
+           (standing(b) && moving_or_unknown(classes[a]));
   };
   std::vector<ScanCluster> clusters;
   SegmentationStats local;

@@ -112,9 +112,12 @@ struct SegmentationStats {
 
 // The clusters of `scan` (every return, whatever its class); `classes` (one per beam, or empty:
 // none known) only splits at class_break_m. Pure; O(beams).
+// `on_moving_trace` (one per beam, or empty): static returns on a mover's own trace
+// (StaticOnMovingTrace), which the class break takes for the mover's.
 std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitClass> classes,
                                      const SegmentationOptions& options, double min_range_m,
-                                     SegmentationStats* stats = nullptr);
+                                     SegmentationStats* stats = nullptr,
+                                     std::span<const std::uint8_t> on_moving_trace = {});
 
 // Whether any beam of `cluster` is dynamic in `classes` (empty: none is).
 bool HasDynamicBeam(const ScanCluster& cluster, std::span<const HitClass> classes);

@@ -299,6 +299,11 @@ TEST(ScanSegmentation, AStaticReturnBesideAMovingOneBeyondTheClassBreakIsAnother
   EXPECT_EQ(ClusterScan(scan, classes, o, 0.1).size(), 2u);
   const std::vector<HitClass> one_class(scan.ranges_m.size(), HitClass::kDynamic);
   EXPECT_EQ(ClusterScan(scan, one_class, o, 0.1).size(), 1u);
+  // Static returns on a mover's own trace (a car's side on the cells it just left) stay with
+  // the mover.
+  std::vector<std::uint8_t> on_trace(scan.ranges_m.size(), 0);
+  for (std::size_t i = 0; i < classes.size(); ++i) on_trace[i] = classes[i] == HitClass::kStatic;
+  EXPECT_EQ(ClusterScan(scan, classes, o, 0.1, nullptr, on_trace).size(), 1u);
   EXPECT_EQ(ClusterScan(StepScan(17.6, 0.25), classes, o, 0.1).size(), 1u);
   SegmentationOptions off = o;
   off.class_break_m = 0.0;

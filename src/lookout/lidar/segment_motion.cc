@@ -44,6 +44,7 @@ void SegmentMotionOptions::Validate(const std::string& source) const {
   non_negative(seen_through_margin_m, "seen_through_margin_m");
   non_negative(max_step_m, "max_step_m");
   non_negative(max_chord_m, "max_chord_m");
+  non_negative(trace_radius_m, "trace_radius_m");
   share(min_vacated_share, "min_vacated_share");
   share(max_static_share, "max_static_share");
   if (min_vacated_returns < 1) throw InputError(source, 0, "min_vacated_returns", "must be >= 1");
@@ -178,6 +179,30 @@ std::vector<int> CarrySegmentMotion(const ScanSegments& previous, const LidarSca
     MarkClusterDynamic(clusters[c], classes);
   }
   return carried;
+}
+
+std::vector<std::uint8_t> StaticOnMovingTrace(const ScanSegments& previous, const LidarScan& scan,
+                                              const Pose2& vehicle_pose,
+                                              std::span<const HitClass> classes,
+                                              const SegmentMotionOptions& options) {
+  std::vector<std::uint8_t> out(classes.size(), 0);
+  std::vector<Eigen::Vector2d> moving_points;
+  for (std::size_t k = 0; k < previous.points.size(); ++k) {
+    if (previous.moving[previous.segment[k]]) moving_points.push_back(previous.points[k]);
+  }
+  if (moving_points.empty()) return out;
+  const double r2 = options.trace_radius_m * options.trace_radius_m;
+  for (std::size_t i = 0; i < classes.size() && i < scan.ranges_m.size(); ++i) {
+    if (classes[i] != HitClass::kStatic) continue;
+    const Eigen::Vector2d p = vehicle_pose * ReturnPoint(scan, i);
+    for (const Eigen::Vector2d& q : moving_points) {
+      if ((p - q).squaredNorm() <= r2) {
+        out[i] = 1;
+        break;
+      }
+    }
+  }
+  return out;
 }
 
 ScanSegments DescribeSegments(const LidarScan& scan, const Pose2& vehicle_pose,

@@ -49,6 +49,10 @@ struct SegmentMotionOptions {
   double max_chord_m = 6.0;
   double max_static_share = 0.6;
   int max_carried_scans = 3;
+  // A return the map calls static this close to a return of a moving segment of the previous
+  // scan lies on the mover's own trace (a car's side sliding along itself), not on something
+  // standing: the segmentation's class break leaves it with the mover (StaticOnMovingTrace).
+  double trace_radius_m = 0.3;
 
   void Validate(const std::string& source = "lidar segment motion options") const;
 };
@@ -85,6 +89,14 @@ std::vector<int> CarrySegmentMotion(const ScanSegments& previous, const LidarSca
                                     const Pose2& vehicle_pose,
                                     std::span<const ScanCluster> clusters,
                                     const SegmentMotionOptions& options, ScanHitClasses& classes);
+
+// Per beam of `scan`, 1 where `classes` calls the return static and it lies within
+// options.trace_radius_m of a return of a moving segment of `previous`: the mover's own trace,
+// which the map holds, not a standing object (SegmentationOptions::class_break_m).
+std::vector<std::uint8_t> StaticOnMovingTrace(const ScanSegments& previous, const LidarScan& scan,
+                                              const Pose2& vehicle_pose,
+                                              std::span<const HitClass> classes,
+                                              const SegmentMotionOptions& options);
 
 // The segments of `scan` for the next scan: `clusters` in the map frame, moving when `own`
 // (OwnMotionEvidence) or carried (CarrySegmentMotion's result).

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -239,6 +240,34 @@ TEST(SegmentMotion, OptionsAreValidated) {
   o = {};
   o.max_carried_scans = -1;
   EXPECT_THROW(o.Validate(), InputError);
+}
+
+// The static returns a moving body leaves on its own trace (a car's side sliding along itself
+// lands on cells the map holds) are flagged; those of something standing beside it are not.
+TEST(SegmentMotion, StaticReturnsOnAMoversTraceAreFlagged) {
+  // The previous scan: the car with its rear at 10 m, moving; the wall standing.
+  const LidarScan before = CastWithWall({CarAhead(10.0)});
+  const ScanSegments previous = Previous(before, 10.0);
+  // This scan: the car 0.2 m further on (its returns within the trace radius of its previous
+  // ones), every return called static by the map.
+  const LidarScan after = CastWithWall({CarAhead(10.2)});
+  const ScanHitClasses classes = AllReturns(after, HitClass::kStatic);
+  const std::vector<std::uint8_t> on_trace =
+      StaticOnMovingTrace(previous, after, Pose2(), classes.beam, SegmentMotionOptions{});
+  int car = 0, wall = 0, car_returns = 0;
+  for (std::size_t i = 0; i < after.ranges_m.size(); ++i) {
+    if (!IsReturn(after, i, kMinRange)) continue;
+    const bool on_car = ReturnPoint(after, i).x() < 20.0;
+    car_returns += on_car;
+    if (on_trace[i] != 0) ++(on_car ? car : wall);
+  }
+  EXPECT_GT(car_returns, 5);
+  EXPECT_EQ(car, car_returns);
+  EXPECT_EQ(wall, 0);
+  // Nothing moved before: nothing is a trace.
+  const std::vector<std::uint8_t> none = StaticOnMovingTrace(
+      Previous(before, kNone), after, Pose2(), classes.beam, SegmentMotionOptions{});
+  EXPECT_EQ(std::count(none.begin(), none.end(), std::uint8_t{1}), 0);
 }
 
 }  // namespace
