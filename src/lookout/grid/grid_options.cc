@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lookout/core/input_error.h"
+#include "lookout/core/pose2.h"
 
 namespace lookout::grid {
 namespace {
@@ -32,6 +33,12 @@ void InverseSensorModelOptions::Validate(const std::string& source,
                     source, prefix + ".no_return_free_range_m", "must be finite and >= 0");
   RequireGridOption(std::isfinite(surface_gap_m) && surface_gap_m >= 0.0, source,
                     prefix + ".surface_gap_m", "must be finite and >= 0");
+  RequireGridOption(surface_incidence_rad > 0.0 && surface_incidence_rad <= 0.5 * kPi, source,
+                    prefix + ".surface_incidence_rad", "must be in (0, pi/2]");
+  RequireGridOption(std::isfinite(surface_range_noise_m) && surface_range_noise_m >= 0.0, source,
+                    prefix + ".surface_range_noise_m", "must be finite and >= 0");
+  RequireGridOption(surface_max_turn_rad >= 0.0 && surface_max_turn_rad <= kPi, source,
+                    prefix + ".surface_max_turn_rad", "must be in [0, pi]");
 }
 
 void GridOptions::Validate(const std::string& source) const {

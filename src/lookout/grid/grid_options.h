@@ -20,15 +20,33 @@ struct InverseSensorModelOptions {
   // 0 to ignore no-return beams altogether.
   double p_free_no_return = 0.4;
   double no_return_free_range_m = 30.0;
-  // Two consecutive beams whose impacts lie at most this far apart hit one surface: the cells
-  // along the segment between the impacts are hits too. Why: a wall seen at a grazing angle is
-  // hit only where the beams land, and those points slide along the wall at the ego's speed
-  // as it drives (at bearing theta the impact on a wall parallel to the motion sits at
-  // x_ego + d / tan(theta)); without the segment the filter tracks that sliding pattern and
-  // calls the wall dynamic. The price: a gap narrower than this between two objects at the
+  // Two consecutive beams whose impacts lie at most this far apart can hit one surface: the
+  // cells along the segment between the impacts are then hits too. Why: a wall seen at a
+  // grazing angle is hit only where the beams land, and those points slide along the wall at
+  // the ego's speed as it drives (at bearing theta the impact on a wall parallel to the motion
+  // sits at x_ego + d / tan(theta)); without the segment the filter tracks that sliding pattern
+  // and calls the wall dynamic. The price: a gap narrower than this between two objects at the
   // same depth is filled. The same distance decides when a beam without return lies in front
   // of one surface (a dropout, see inverse_sensor_model.h). 0 turns the segments off.
   double surface_gap_m = 1.0;
+  // ...but two impacts within surface_gap_m are also one object's edge and another's face
+  // behind it (a give-way sign 0.7 m in front of a walker at 18 m): one beam's last return on
+  // the nearer, the next beam's on the farther, and the segment between them runs along the
+  // beams. Joined, it was a line of hits across the depth jump that tied the walker to the
+  // sign, and the grid read the walker as still as the sign (docs/grid.md, "A depth jump is no
+  // surface"). So a segment is a surface when its impacts lie within Borges and Aldon's
+  // breakpoint distance (core/breakpoint_distance.h: the spacing on a surface seen at
+  // surface_incidence_rad, plus the range noise; the lidar segmentation's rule), or, for a
+  // surface seen more obliquely (a wall along the road far ahead), when the surface goes on in
+  // line past one of its ends: the previous beam's impact before the first, or the next
+  // beam's after the second, within surface_gap_m and turned by at most surface_max_turn_rad.
+  // A wall at a grazing angle is a run of collinear impacts; a depth jump turns by about a
+  // right angle from the faces on either side of it.
+  double surface_incidence_rad = 10.0 * 3.14159265358979323846 / 180.0;
+  double surface_range_noise_m = 0.09;  // three sigmas of the scanner's range noise
+  // 20 degrees: the direction of a 0.2 m segment between impacts with 2 cm of range noise
+  // scatters by up to about 12 degrees.
+  double surface_max_turn_rad = 0.35;
 
   // Throws lookout::InputError naming the first field out of range; `prefix` is the field path
   // of this struct ("grid.inverse_sensor_model").

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lookout/core/breakpoint_distance.h"
 #include "lookout/grid/ray_traversal.h"
 
 namespace lookout::grid {
@@ -110,11 +111,33 @@ void ComputeInverseSensorModel(const LidarScan& scan, const Pose2& sensor_pose,
                              static_cast<double>(scan.ranges_m[beam]) *
                                  Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));
     };
-    for (std::size_t beam = 0; beam + 1 < scan.ranges_m.size(); ++beam) {
+    // One surface (InverseSensorModelOptions::surface_incidence_rad): within the breakpoint
+    // distance at the nearer impact's range, or in line with an impact past either end.
+    const std::size_t beams = scan.ranges_m.size();
+    const double dphi_rad = std::abs(scan.angle_increment_rad);
+    const double min_cos_turn = std::cos(options.surface_max_turn_rad);
+    auto goes_on = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                       const Eigen::Vector2d& along) {
+      const Eigen::Vector2d step = to - from;
+      const double length = step.norm();
+      return length > 0.0 && length <= surface_gap_m && step.dot(along) >= min_cos_turn * length;
+    };
+    for (std::size_t beam = 0; beam + 1 < beams; ++beam) {
       if (!returned(beam) || !returned(beam + 1)) continue;
       const Eigen::Vector2d a = impact(beam);
       const Eigen::Vector2d b = impact(beam + 1);
-      if ((b - a).norm() > surface_gap_m) continue;
+      const double length = (b - a).norm();
+      if (length > surface_gap_m) continue;
+      const double nearer_m =
+          static_cast<double>(std::min(scan.ranges_m[beam], scan.ranges_m[beam + 1]));
+      if (length > BreakpointDistance(nearer_m, dphi_rad, options.surface_incidence_rad,
+                                      options.surface_range_noise_m)) {
+        const Eigen::Vector2d along = (b - a) / length;
+        const bool before = beam > 0 && returned(beam - 1) && goes_on(impact(beam - 1), a, along);
+        const bool after =
+            beam + 2 < beams && returned(beam + 2) && goes_on(b, impact(beam + 2), along);
+        if (!before && !after) continue;
+      }
       ++out.stats.surface_segments;
       TraverseSegment(geometry, a, b, [&](std::size_t i, bool /*is_end*/) {
         ++visits;

@@ -11,9 +11,10 @@
 //     no_return_free_range_m get the weaker p_free_no_return, no hit (see
 //     InverseSensorModelOptions for why weaker);
 //   - NaN (an erroneous reading) and r <= 0 (no lidar measures zero): skipped and counted;
-//   - two consecutive returns whose impacts lie within surface_gap_m of each other are one
-//     surface: the cells along the segment joining them are hits as well (see
-//     InverseSensorModelOptions::surface_gap_m for why).
+//   - two consecutive returns whose impacts lie within surface_gap_m of each other, and within
+//     the breakpoint distance or in line with the surface past them, are one surface: the
+//     cells along the segment joining them are hits as well (see
+//     InverseSensorModelOptions::surface_gap_m for why, surface_incidence_rad for which).
 // Cells no beam reaches (outside the field of view, behind impacts, beyond the ranges above)
 // stay 0.5: no evidence, so the filter's prediction passes there unchanged (step 3).
 //

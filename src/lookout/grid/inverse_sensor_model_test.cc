@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include "lookout/grid/testing/segment_in_cell.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,8 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include "lookout/core/breakpoint_distance.h"
 #include "lookout/core/dead_reckoning.h"
 #include "lookout/core/random.h"
+#include "lookout/grid/testing/segment_in_cell.h"
 
 namespace lookout::grid {
 namespace {
@@ -90,19 +90,40 @@ std::vector<Beam> Beams(const LidarScan& scan, const Pose2& pose,
   return beams;
 }
 
-// The surface segments: the impacts of consecutive returns at most surface_gap_m apart.
+// The surface segments: the impacts of consecutive returns at most surface_gap_m apart, and
+// either within Borges-Aldon's distance at the nearer range (written out here) or in line with
+// the previous or the next impact (the angle between the two steps at most
+// surface_max_turn_rad).
 std::vector<Beam> Surfaces(const LidarScan& scan, const Pose2& pose,
                            const InverseSensorModelOptions& o) {
   std::vector<Beam> surfaces;
+  const std::size_t n = scan.ranges_m.size();
+  auto range = [&](std::size_t i) { return static_cast<double>(scan.ranges_m[i]); };
   auto impact = [&](std::size_t i) -> std::optional<Vector2d> {
-    const auto r = static_cast<double>(scan.ranges_m[i]);
+    const double r = range(i);
     if (!(r > 0.0 && r < scan.max_range_m)) return std::nullopt;
     const double angle = pose.yaw + scan.BeamAngle(i);
     return pose.translation + r * Vector2d(std::cos(angle), std::sin(angle));
   };
-  for (std::size_t i = 0; i + 1 < scan.ranges_m.size(); ++i) {
+  auto turn_rad = [](const Vector2d& u, const Vector2d& v) {
+    return std::acos(std::clamp(u.dot(v) / (u.norm() * v.norm()), -1.0, 1.0));
+  };
+  auto in_line = [&](const std::optional<Vector2d>& p, const std::optional<Vector2d>& q,
+                     const Vector2d& step) {
+    return p && q && (*q - *p).norm() > 0.0 && (*q - *p).norm() <= o.surface_gap_m &&
+           turn_rad(*q - *p, step) <= o.surface_max_turn_rad;
+  };
+  const double dphi = std::abs(scan.angle_increment_rad);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
     const auto a = impact(i), b = impact(i + 1);
-    if (a && b && (*b - *a).norm() <= o.surface_gap_m) surfaces.push_back({*a, *b, true});
+    if (!a || !b || (*b - *a).norm() > o.surface_gap_m) continue;
+    const double nearer = std::min(range(i), range(i + 1));
+    const double breakpoint = nearer * std::sin(dphi) / std::sin(o.surface_incidence_rad - dphi) +
+                              o.surface_range_noise_m;
+    const bool surface = (*b - *a).norm() <= breakpoint ||
+                         (i > 0 && in_line(impact(i - 1), a, *b - *a)) ||
+                         (i + 2 < n && in_line(b, impact(i + 2), *b - *a));
+    if (surface) surfaces.push_back({*a, *b, true});
   }
   return surfaces;
 }
@@ -286,6 +307,75 @@ TEST(InverseSensorModelTest, ConsecutiveReturnsFromOneSurfaceAreJoined) {
   EXPECT_EQ(joined, samples);
   const auto [beams_only, samples_too] = hits_along_wall(0.0);
   EXPECT_LT(beams_only, samples_too * 9 / 10);
+}
+
+// A wall 1 m to the right seen 4 to 6.5 degrees off the axis, more obliquely than the
+// breakpoint distance's 10 degrees: its impacts are 0.35-0.9 m apart, beyond that distance,
+// but each in line with the next, so it is still one surface.
+TEST(InverseSensorModelTest, AWallInLineBeyondTheBreakpointDistanceIsJoined) {
+  const ScrollingGridGeometry g(GridOptions{});
+  constexpr double kWallM = 1.025;
+  const double increment = DegToRad(0.25);
+  const double first = DegToRad(-6.5);
+  std::vector<float> ranges;
+  for (int i = 0; i <= 10; ++i) {
+    ranges.push_back(static_cast<float>(kWallM / std::sin(-(first + i * increment))));
+  }
+  const LidarScan scan = Scan(first, increment, ranges);
+  const InverseSensorModelOptions o = Options();
+  // Every step lies beyond the breakpoint distance.
+  for (std::size_t i = 0; i + 1 < ranges.size(); ++i) {
+    const double a = first + static_cast<double>(i) * increment;
+    const Vector2d p = static_cast<double>(ranges[i]) * Vector2d(std::cos(a), std::sin(a));
+    const Vector2d q = static_cast<double>(ranges[i + 1]) *
+                       Vector2d(std::cos(a + increment), std::sin(a + increment));
+    ASSERT_GT((q - p).norm(), BreakpointDistance(static_cast<double>(ranges[i + 1]), increment,
+                                                 o.surface_incidence_rad, o.surface_range_noise_m));
+  }
+  const MeasurementGrid m = ComputeInverseSensorModel(scan, Pose2(0.0, 0.0, 0.0), g, o);
+  ExpectTouchedIsTheSupport(m);
+  const double x0 = kWallM / std::tan(DegToRad(6.5)), x1 = kWallM / std::tan(DegToRad(4.0));
+  int hits = 0, samples = 0;
+  for (double x = x0; x <= x1; x += 0.01) {
+    ++samples;
+    hits += m.p_occupied[*g.StorageIndexAt(Vector2d(x, -kWallM))] == 0.7f ? 1 : 0;
+  }
+  EXPECT_EQ(hits, samples);
+}
+
+// A give-way sign 0.7 m in front of a walker at 18 m (occluded-pedestrian's first seconds):
+// the last beam on the sign and the first on the walker land 0.7 m apart along the beams,
+// within surface_gap_m but beyond the breakpoint distance, and neither face goes on in line
+// with the jump. The cells between are not hits: the beam that reached the walker crossed
+// them, free.
+TEST(InverseSensorModelTest, ADepthJumpBetweenTwoObjectsIsNoSurface) {
+  const ScrollingGridGeometry g(GridOptions{});
+  const double increment = DegToRad(0.25);
+  std::vector<float> ranges(21, kInf);  // -2.5 .. +2.5 degrees
+  for (int i = 8; i <= 10; ++i) ranges[static_cast<std::size_t>(i)] = 18.0f;   // the sign
+  for (int i = 11; i <= 16; ++i) ranges[static_cast<std::size_t>(i)] = 18.7f;  // the walker
+  const LidarScan scan = Scan(DegToRad(-2.5), increment, ranges);
+  const InverseSensorModelOptions o = Options();
+  const MeasurementGrid m = ComputeInverseSensorModel(scan, Pose2(0.0, 0.0, 0.0), g, o);
+  ExpectTouchedIsTheSupport(m);
+  // Along beam 11, from 0.2 m past the sign's depth to 0.2 m short of the walker's face (the
+  // cells of neither).
+  const double angle = DegToRad(-2.5) + 11.0 * increment;
+  const Vector2d dir(std::cos(angle), std::sin(angle));
+  int hits = 0;
+  for (double r = 18.2; r <= 18.5; r += 0.01) {
+    hits += m.p_occupied[*g.StorageIndexAt(r * dir)] == 0.7f ? 1 : 0;
+  }
+  EXPECT_EQ(hits, 0);
+  // Each body's own returns, 8 cm apart, are still one surface: the walker's face is hit
+  // between its first and last beams.
+  const double a11 = angle, a16 = DegToRad(-2.5) + 16.0 * increment;
+  for (double t = 0.0; t <= 1.0; t += 0.05) {
+    const Vector2d p = ((1.0 - t) * Vector2d(std::cos(a11), std::sin(a11)) +
+                        t * Vector2d(std::cos(a16), std::sin(a16))) *
+                       18.7;
+    EXPECT_EQ(m.p_occupied[*g.StorageIndexAt(p)], 0.7f) << "t = " << t;
+  }
 }
 
 // Two poles 2 m apart at the same range are two objects, not one surface: the cells between

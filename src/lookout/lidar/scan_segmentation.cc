@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lookout/core/breakpoint_distance.h"
 #include "lookout/core/input_error.h"
 #include "lookout/core/planar_geometry.h"
 
@@ -289,11 +290,8 @@ void SegmentationOptions::Validate(const std::string& source) const {
 }
 
 double BreakpointDistance(double r_prev_m, double dphi_rad, const SegmentationOptions& options) {
-  const double noise = options.breakpoint_noise_sigmas * options.range_noise_m;
-  // Beams further apart than the incidence angle: no surface rule holds, only the noise.
-  if (dphi_rad >= options.breakpoint_incidence_rad) return noise;
-  return r_prev_m * std::sin(dphi_rad) / std::sin(options.breakpoint_incidence_rad - dphi_rad) +
-         noise;
+  return lookout::BreakpointDistance(r_prev_m, dphi_rad, options.breakpoint_incidence_rad,
+                                     options.breakpoint_noise_sigmas * options.range_noise_m);
 }
 
 std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitClass> classes,

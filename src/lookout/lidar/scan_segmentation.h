@@ -96,7 +96,8 @@ struct SegmentationOptions {
   void Validate(const std::string& source = "lidar segmentation options") const;
 };
 
-// Borges-Aldon's D_max for two returns dphi apart, the first at range r_prev.
+// Borges-Aldon's D_max (core/breakpoint_distance.h) for two returns dphi apart, the first at
+// range r_prev, with the options' incidence and noise.
 double BreakpointDistance(double r_prev_m, double dphi_rad, const SegmentationOptions& options);
 
 // One cluster: the beams it holds, first to last, in scan order.
