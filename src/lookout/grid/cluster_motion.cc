@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lookout/core/input_error.h"
 #include "lookout/grid/filter_state.h"
 #include "lookout/grid/grid_objects.h"
+#include "lookout/grid/inverse_sensor_model.h"
 
 namespace lookout::grid {
 namespace {
@@ -62,6 +64,98 @@ GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
   return c;
 }
 
+// The still bodies of ClusterMotionOptions::still_bodies. `role` marks the cells the dynamic
+// clusters hold (non-zero).
+void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, const ScanFlow& flow,
+                     const std::vector<std::uint8_t>& role, double dt_s, double known_confidence,
+                     const ClusterMotionOptions& options, std::span<const float> occupancy,
+                     std::span<float> vx, std::span<float> vy, std::span<float> confidence) {
+  const HitMaps* older = flow.long_pair();
+  if (older == nullptr) return;
+  const int w = g.width(), h = g.height();
+  const int search_half = 2 * options.search_half_cells;
+  const double cells_per_mps = dt_s / g.cell_size_m();
+  std::vector<std::uint8_t> visited(g.CellCount(), 0);
+  const auto candidate = [&](std::size_t s) {
+    return role[s] == 0 && visited[s] == 0 && z.p_occupied[s] > 0.5f &&
+           static_cast<double>(occupancy[s]) > options.min_occupancy;
+  };
+  std::vector<CellIndex> body;
+  // Bodies start from this scan's hits in the measurement's order; each body is measured and
+  // written alone, so the order does not change the result.
+  for (const std::size_t first : z.touched) {
+    if (!candidate(first)) continue;
+    {
+      const CellIndex start = g.LocalFromGlobal(g.GlobalFromStorage(first));
+      // The body: breadth-first over the 8-neighbourhood.
+      body.assign(1, start);
+      visited[first] = 1;
+      int x0 = start.ix, x1 = start.ix, y0 = start.iy, y1 = start.iy;
+      for (std::size_t q = 0; q < body.size(); ++q) {
+        const CellIndex c = body[q];
+        x0 = std::min(x0, c.ix);
+        x1 = std::max(x1, c.ix);
+        y0 = std::min(y0, c.iy);
+        y1 = std::max(y1, c.iy);
+        for (int y = std::max(0, c.iy - 1); y <= std::min(h - 1, c.iy + 1); ++y) {
+          for (int x = std::max(0, c.ix - 1); x <= std::min(w - 1, c.ix + 1); ++x) {
+            const std::size_t s = g.StorageIndexOfLocal({x, y});
+            if (!candidate(s)) continue;
+            visited[s] = 1;
+            body.push_back({x, y});
+          }
+        }
+      }
+      if (static_cast<int>(body.size()) < options.min_hits ||
+          std::max(x1 - x0, y1 - y0) + 1 > options.still_max_extent_cells) {
+        continue;
+      }
+      const ClusterMotion m = MeasureClusterMotion(*older, body, {0, 0}, search_half, options);
+      if (!m.measured ||
+          std::hypot(m.dx_cells, m.dy_cells) < options.still_min_displacement_cells ||
+          std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
+        continue;
+      }
+      // The body left where it was.
+      const int mx = static_cast<int>(std::ceil(std::abs(m.dx_cells))) + 1;
+      const int my = static_cast<int>(std::ceil(std::abs(m.dy_cells))) + 1;
+      int left = 0, vacated = 0;
+      for (int y = std::max(0, y0 - my); y <= std::min(h - 1, y1 + my); ++y) {
+        for (int x = std::max(0, x0 - mx); x <= std::min(w - 1, x1 + mx); ++x) {
+          const std::size_t k = MapIndex(*older, x, y);
+          if (older->before[k] == 0 || older->now[k] == 2) continue;
+          ++left;
+          if (older->free_now[k] != 0) ++vacated;
+        }
+      }
+      if (left < 2 || vacated < options.still_min_vacated_share * left) continue;
+      // The last cycle agrees.
+      const double per_cycle = flow.long_lag_scale();
+      const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
+      const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
+      int score = 0;
+      for (const CellIndex& c : body) score += BeforeScore(flow.short_pair(), c.ix - sx, c.iy - sy);
+      if (score < options.min_matched_share * 2.0 * static_cast<double>(body.size())) continue;
+      // The grid believed it slower.
+      const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
+      const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
+      double believed = 0.0;
+      for (const CellIndex& c : body) {
+        const std::size_t s = g.StorageIndexOfLocal(c);
+        believed += std::hypot(static_cast<double>(vx[s]), static_cast<double>(vy[s]));
+      }
+      believed /= static_cast<double>(body.size());
+      if (believed > options.still_believed_share * std::hypot(body_vx, body_vy)) continue;
+      for (const CellIndex& c : body) {
+        const std::size_t s = g.StorageIndexOfLocal(c);
+        vx[s] = static_cast<float>(body_vx);
+        vy[s] = static_cast<float>(body_vy);
+        confidence[s] = static_cast<float>(known_confidence);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void ClusterMotionOptions::Validate(const std::string& source) const {
@@ -77,6 +171,15 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              source, "ambiguity_radius_cells", "must be finite and >= 0");
   RequireClusterMotionOption(WithinUnit(ambiguity_share), source, "ambiguity_share",
                              "must be in [0, 1]");
+  RequireClusterMotionOption(still_max_extent_cells >= 1, source, "still_max_extent_cells",
+                             "must be >= 1");
+  RequireClusterMotionOption(
+      std::isfinite(still_min_displacement_cells) && still_min_displacement_cells >= 0.0, source,
+      "still_min_displacement_cells", "must be finite and >= 0");
+  RequireClusterMotionOption(WithinUnit(still_min_vacated_share), source, "still_min_vacated_share",
+                             "must be in [0, 1]");
+  RequireClusterMotionOption(std::isfinite(still_believed_share) && still_believed_share >= 0.0,
+                             source, "still_believed_share", "must be finite and >= 0");
   ClusterOptions(*this).Validate(source);
 }
 
@@ -143,7 +246,6 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
   const GridObjectOptions cluster_options = ClusterOptions(options);
   const std::vector<GridCluster> clusters = FindRigidClusters(
       layers, ids, DynamicCellMask(layers, ids, cluster_options), cluster_options);
-  if (clusters.empty()) return;
   const ScrollingGridGeometry& g = layers.geometry();
   const std::span<float> occupancy = layers.Values(ids.occupancy);
   const std::span<float> vx = layers.Values(ids.velocity_x_mps);
@@ -223,6 +325,10 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
       vy[cell] = static_cast<float>(body_vy);
       confidence[cell] = static_cast<float>(known_confidence);
     }
+  }
+  if (options.still_bodies) {
+    MoveStillBodies(g, z, flow, role, dt_s, known_confidence, options, occupancy, vx, vy,
+                    confidence);
   }
 }
 

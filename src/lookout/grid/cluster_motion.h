@@ -36,7 +36,8 @@
 //     (staying explains it as well: a wall cell that rigidity links joined to a walker); each
 //     attached hit with no trusted velocity of its own (confidence under the filter's
 //     known_confidence) takes v_body and that confidence, so the next cycle moves it with the
-//     body.
+//     body;
+//   - then the still bodies (ClusterMotionOptions::still_bodies), which no cluster holds.
 //
 // Deterministic: clusters in window order, one thread.
 
@@ -77,6 +78,33 @@ struct ClusterMotionOptions {
   double min_velocity_confidence = 0.25;
   double min_link = 0.05;
   int min_cells = 3;
+
+  // Still bodies (docs/grid.md, "A walker held still"): a small body the grid believes still
+  // but the long baseline sees moving. A walker's 0.6 cell a cycle is staying to the one-cycle
+  // pair, so a walker newly in view (or in view before six scans exist) is read still, its
+  // stillness becomes trusted, and a trusted cell never asks the scan pair again; nor is it a
+  // dynamic cell any cluster above holds. Each 8-connected body of cells this scan hits, above
+  // min_occupancy, that no dynamic cluster holds, is measured against the long pair's older
+  // scan (MeasureClusterMotion, +-2 search_half_cells around staying) when it is at most
+  // still_max_extent_cells across (a walker, a pushchair, a cyclist, a pole; not a wall); it
+  // moved when
+  //   - the displacement is at least still_min_displacement_cells over the baseline, and not at
+  //     the edge of the search (there the best is the search's edge, not the body's: a car's
+  //     side sliding along itself aliases to it);
+  //   - the body left where it was: of the older scan's hits around the body that this scan
+  //     does not hit, at least still_min_vacated_share are seen free now (a wall's hits
+  //     sliding along it as the ego drives leave nothing seen through);
+  //   - the last cycle agrees: the body's hits moved back by one cycle's share of the
+  //     displacement land on the previous scan's hits (min_matched_share);
+  //   - the grid believed it slower: its cells' mean speed at most still_believed_share of the
+  //     measured one (a fast body's piece the long pair aliases is not held still).
+  // Its cells then take the measured velocity with the filter's known_confidence: the next
+  // cycle moves them with it, a dynamic cluster above.
+  bool still_bodies = true;
+  int still_max_extent_cells = 8;  // 1.2 m at 0.15 m
+  double still_min_displacement_cells = 1.5;
+  double still_min_vacated_share = 0.5;
+  double still_believed_share = 0.5;
 
   // Throws lookout::InputError naming the first field out of range
   // (grid.filter.cluster_motion.<field>).

@@ -211,6 +211,86 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   EXPECT_EQ(off.Vx(21, 21), 1.0f);
 }
 
+// A walker's arc crossing the beams at 0.6 cell a cycle (1.1 m/s), believed still with a
+// trusted confidence (the one-cycle pair called it staying), and a pole four cells away, still
+// and hit at the same cells every scan. The long pair (six scans) sees the arc 3.6 cells
+// further on.
+struct HeldStillScene {
+  HandMadeFilterState state;
+  ScanFlow flow;
+  MeasurementGrid z;
+  std::vector<CellIndex> arc_now, pole;
+
+  static std::vector<CellIndex> ArcAt(double y_cells) { return DiscArcCells(20.3, y_cells, 1.7); }
+
+  // `free_elsewhere`: the scans see free space wherever they do not hit (false: unknown).
+  explicit HeldStillScene(bool free_elsewhere) {
+    for (int y = 30; y <= 31; ++y) {
+      for (int x = 26; x <= 27; ++x) pole.push_back({x, y});
+    }
+    const ScrollingGridGeometry& g = state.layers.geometry();
+    const auto scan = [&](double y_cells, TimeNs stamp) {
+      std::vector<CellIndex> hits = ArcAt(y_cells);
+      hits.insert(hits.end(), pole.begin(), pole.end());
+      MeasurementGrid m = HitsMeasurement(g, hits, stamp);
+      if (!free_elsewhere) {
+        for (float& p : m.p_occupied) {
+          if (p < 0.5f) p = 0.5f;
+        }
+      }
+      return m;
+    };
+    const int lag = ScanFlowOptions{}.long_lag_scans;
+    for (int k = 0; k < lag; ++k) {
+      const MeasurementGrid older = scan(20.3 + 0.6 * k, (k + 1) * kClusterDtNs);
+      flow.Prepare(older);
+      flow.Remember(older);
+    }
+    z = scan(20.3 + 0.6 * lag, (lag + 1) * kClusterDtNs);
+    flow.Prepare(z);
+    arc_now = ArcAt(20.3 + 0.6 * lag);
+    for (const CellIndex& c : arc_now) state.Set(c.ix, c.iy, 0.9f, 0.0f, 0.9f);
+    for (const CellIndex& c : pole) state.Set(c.ix, c.iy, 0.9f, 0.0f, 0.9f);
+  }
+  float Vy(int x, int y) const {
+    const GridLayers& l = state.layers;
+    return l.Values(state.ids.velocity_y_mps)[l.geometry().StorageIndexOfLocal({x, y})];
+  }
+};
+
+TEST(ApplyClusterMotionTest, AWalkerHeldStillIsMovedAtWhatTheLongBaselineSaw) {
+  HeldStillScene scene(/*free_elsewhere=*/true);
+  ASSERT_NE(scene.flow.long_pair(), nullptr);
+  ApplyClusterMotion(scene.state.layers, scene.state.ids, scene.z, scene.flow, kClusterDtS, 0.25,
+                     {});
+  // 0.6 cell a cycle is 1.125 m/s; the whole-cell match over six scans finds 3 or 4 cells, the
+  // parabola a fraction between.
+  for (const CellIndex& c : scene.arc_now) {
+    EXPECT_NEAR(scene.Vy(c.ix, c.iy), 1.125f, 0.2f) << c.ix << "," << c.iy;
+    EXPECT_FLOAT_EQ(scene.state.Confidence(c.ix, c.iy), 0.25f);
+  }
+  // The pole stayed where it was: still.
+  for (const CellIndex& c : scene.pole) {
+    EXPECT_EQ(scene.Vy(c.ix, c.iy), 0.0f);
+    EXPECT_FLOAT_EQ(scene.state.Confidence(c.ix, c.iy), 0.9f);
+  }
+  // Off: the walker stays held still.
+  HeldStillScene off(/*free_elsewhere=*/true);
+  ClusterMotionOptions no_still;
+  no_still.still_bodies = false;
+  ApplyClusterMotion(off.state.layers, off.state.ids, off.z, off.flow, kClusterDtS, 0.25, no_still);
+  for (const CellIndex& c : off.arc_now) EXPECT_EQ(off.Vy(c.ix, c.iy), 0.0f);
+}
+
+// The same hits without free space between them (a pattern of hits sliding along a wall as
+// the ego drives: nothing is seen through where they were): not moved.
+TEST(ApplyClusterMotionTest, HitsThatLeaveNothingSeenFreeAreNotMoved) {
+  HeldStillScene scene(/*free_elsewhere=*/false);
+  ApplyClusterMotion(scene.state.layers, scene.state.ids, scene.z, scene.flow, kClusterDtS, 0.25,
+                     {});
+  for (const CellIndex& c : scene.arc_now) EXPECT_EQ(scene.Vy(c.ix, c.iy), 0.0f);
+}
+
 // --- in the filter: a walker seen by a lidar from one side
 
 // A scan from the origin of a disc of `radius_m` at `centre_m` (0.25 degree beams over +-60
