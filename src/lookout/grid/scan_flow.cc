@@ -251,11 +251,8 @@ ScanFlow::ScanFlow(const ScanFlowOptions& options) : options_(options) { options
 void ScanFlow::Prepare(const MeasurementGrid& z) {
   const ScrollingGridGeometry& g = z.geometry;
   has_pair_ = options_.enabled && !history_.empty();
-  // The long pair from the second remembered scan on, over all that is remembered: a walker
-  // in view from the first scan is otherwise held still by the one-cycle pair for the six
-  // scans it takes to fill the history, long enough for its stillness to be trusted.
-  long_lag_ = static_cast<int>(history_.size());
-  has_long_pair_ = has_pair_ && options_.long_lag_scans > 1 && long_lag_ >= 2 &&
+  has_long_pair_ = has_pair_ && options_.long_lag_scans > 1 &&
+                   static_cast<int>(history_.size()) == options_.long_lag_scans &&
                    z.stamp > history_.front().stamp && z.stamp > history_.back().stamp;
   maps_.Reset(has_pair_ ? g.width() : 0, has_pair_ ? g.height() : 0);
   long_maps_.Reset(has_long_pair_ ? g.width() : 0, has_long_pair_ ? g.height() : 0);
@@ -294,9 +291,9 @@ FlowMeasurement ScanFlow::Measure(const CellIndex& cell) const {
                               options_.long_lag_below_cells;
   if (!has_long_pair_ || !short_move) return one;
   FlowMeasurement lag = MeasureFlow(
-      long_maps_, cell, options_.long_lag_below_cells * long_lag_, options_);
+      long_maps_, cell, options_.long_lag_below_cells * options_.long_lag_scans, options_);
   if (lag.kind == FlowKind::kUnknown) return one;
-  lag.lag_scans = long_lag_;
+  lag.lag_scans = options_.long_lag_scans;
   lag.mean_x_cells = lag.displacement.ix * long_lag_scale_;
   lag.mean_y_cells = lag.displacement.iy * long_lag_scale_;
   // The long pair's move, over one cycle, must come from a previous hit: the last scan saw

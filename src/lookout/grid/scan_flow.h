@@ -34,8 +34,6 @@
 // a cycle, which whole-cell matching calls staying; so a displacement under long_lag_below_cells
 // over one cycle is measured again against the scan long_lag_scans back (2.4 cells for the
 // walker over four), and that displacement, scaled to this cycle by the stamps, is the mean.
-// Until long_lag_scans scans are remembered, the oldest one is the long pair's (from the third
-// scan on).
 
 #include <cstdint>
 #include <deque>
@@ -152,8 +150,7 @@ class ScanFlow {
   // Remembers z's hits for the next cycle.
   void Remember(const MeasurementGrid& z);
   // The prepared pairs: the previous scan and this one, and the oldest remembered scan and this
-  // one (nullptr without it: fewer than two scans remembered); this cycle's dt is
-  // long_lag_scale() times the long pair's baseline.
+  // one (nullptr without it); this cycle's dt is long_lag_scale() times the long pair's baseline.
   const HitMaps& short_pair() const { return maps_; }
   const HitMaps* long_pair() const { return has_long_pair_ ? &long_maps_ : nullptr; }
   double long_lag_scale() const { return long_lag_scale_; }
@@ -167,7 +164,6 @@ class ScanFlow {
   std::deque<Scan> history_;  // newest last, at most long_lag_scans
   bool has_pair_ = false;
   bool has_long_pair_ = false;
-  int long_lag_ = 0;                              // scans between the long pair's two
   double long_lag_scale_ = 1.0;                   // this cycle's dt over the long baseline's
   HitMaps maps_;                                  // the previous scan and this one
   HitMaps long_maps_;                             // the oldest remembered scan and this one

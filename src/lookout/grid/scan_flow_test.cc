@@ -175,30 +175,6 @@ TEST(ScanFlowTest, ASlowArcIsMeasuredOverTheLongBaseline) {
   EXPECT_NEAR(m.mean_y_cells, 0.0, 1e-9);
 }
 
-// From the third scan on the long pair spans what is remembered: the arc in view from the
-// first scan is measured moving before six scans exist, over the two or three it has.
-TEST(ScanFlowTest, TheLongPairSpansTheScansRememberedSoFar) {
-  ScanFlowOptions options;
-  options.enabled = true;
-  ScanFlow flow(options);
-  const ScrollingGridGeometry g(0.15, kSide, kSide, CellIndex{-5, 7});
-  const TimeNs period = 80'000'000;
-  std::vector<FlowMeasurement> measured;
-  for (int k = 0; k <= 3; ++k) {
-    const MeasurementGrid z = ArcScan(g, 20.0 + 0.6 * k, period * (k + 1));
-    flow.Prepare(z);
-    EXPECT_EQ(flow.long_pair() != nullptr, k >= 2) << "scan " << k;
-    measured.push_back(flow.Measure({static_cast<int>(std::lround(20.0 + 0.6 * (k - 1))), 30}));
-    flow.Remember(z);
-  }
-  // Scan 3 (three remembered): 1.8 cells over the three, whole cells: 2, 0.67 a cycle.
-  const FlowMeasurement& m = measured[3];
-  ASSERT_EQ(m.kind, FlowKind::kMoves);
-  EXPECT_EQ(m.lag_scans, 3);
-  EXPECT_NEAR(m.mean_x_cells, 0.6, 0.5 / 3.0 + 1e-9);
-  EXPECT_NEAR(m.mean_y_cells, 0.0, 1e-9);
-}
-
 // MeasureCells: an ambiguous "stays" connected to measured motion is not staying (a car's long
 // side matches itself unshifted as it drives along it; its corner pins the motion); on its own
 // (a wall seen along itself) it is.
