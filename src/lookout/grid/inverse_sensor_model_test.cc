@@ -275,33 +275,47 @@ TEST(InverseSensorModelTest, WallAtKnownDistance) {
   ExpectTouchedIsTheSupport(m);
 }
 
-// A wall parallel to the sensor's heading, 4.275 m to its right (mid-cell), seen from 10 to 80
-// degrees off the axis: beyond a few metres its impacts are farther apart than a cell, and as the
-// sensor moves they slide along it. Joined as one surface, every cell the wall passes through
-// between the first and the last impact is a hit; without the segments, some are not.
+// A wall parallel to the sensor's heading, `wall_m` to its right, seen from the sensor at the
+// origin between `from_deg` and `to_deg` off the axis (from > to > 0), one beam every 0.25
+// degrees.
+LidarScan WallScan(double wall_m, double from_deg, double to_deg) {
+  const double increment = DegToRad(0.25);
+  const double first = -DegToRad(from_deg);
+  const int beams = static_cast<int>(std::lround((from_deg - to_deg) / 0.25));
+  std::vector<float> ranges;
+  for (int i = 0; i <= beams; ++i) {
+    ranges.push_back(static_cast<float>(wall_m / std::sin(-(first + i * increment))));
+  }
+  return Scan(first, increment, ranges);
+}
+
+// The wall's cells between its first and last impact, sampled every 1 cm: how many samples
+// fall in hit cells, of how many.
+std::pair<int, int> HitsAlongWall(const MeasurementGrid& m, const ScrollingGridGeometry& g,
+                                  double wall_m, double from_deg, double to_deg) {
+  int hits = 0, samples = 0;
+  for (double x = wall_m / std::tan(DegToRad(from_deg)); x <= wall_m / std::tan(DegToRad(to_deg));
+       x += 0.01) {
+    ++samples;
+    hits += m.p_occupied[*g.StorageIndexAt(Vector2d(x, -wall_m))] == 0.7f ? 1 : 0;
+  }
+  return {hits, samples};
+}
+
+// The wall 4.275 m to the right (mid-cell), seen from 10 to 80 degrees off the axis: beyond a
+// few metres its impacts are farther apart than a cell, and as the sensor moves they slide
+// along it. Joined as one surface, every cell the wall passes through between the first and the
+// last impact is a hit; without the segments, some are not.
 TEST(InverseSensorModelTest, ConsecutiveReturnsFromOneSurfaceAreJoined) {
   const ScrollingGridGeometry g(GridOptions{});
   constexpr double kWallM = 4.275;
-  const double increment = DegToRad(0.25);
-  const double first = DegToRad(-80.0);
-  std::vector<float> ranges;
-  for (int i = 0; i <= 280; ++i) {
-    ranges.push_back(static_cast<float>(kWallM / std::sin(-(first + i * increment))));
-  }
-  const LidarScan scan = Scan(first, increment, ranges);
+  const LidarScan scan = WallScan(kWallM, 80.0, 10.0);
   auto hits_along_wall = [&](double surface_gap_m) {
     InverseSensorModelOptions o = Options();
     o.surface_gap_m = surface_gap_m;
     const MeasurementGrid m = ComputeInverseSensorModel(scan, Pose2(0.0, 0.0, 0.0), g, o);
     ExpectTouchedIsTheSupport(m);
-    int hits = 0, cells = 0;
-    // Sample the wall every 1 cm between the first and the last impact (x = 0.75 .. 24.2 m).
-    for (double x = kWallM / std::tan(DegToRad(80.0)); x <= kWallM / std::tan(DegToRad(10.0));
-         x += 0.01) {
-      ++cells;
-      hits += m.p_occupied[*g.StorageIndexAt(Vector2d(x, -kWallM))] == 0.7f ? 1 : 0;
-    }
-    return std::pair{hits, cells};
+    return HitsAlongWall(m, g, kWallM, 80.0, 10.0);  // x = 0.75 .. 24.2 m
   };
   const auto [joined, samples] = hits_along_wall(1.0);
   EXPECT_EQ(joined, samples);
@@ -309,37 +323,27 @@ TEST(InverseSensorModelTest, ConsecutiveReturnsFromOneSurfaceAreJoined) {
   EXPECT_LT(beams_only, samples_too * 9 / 10);
 }
 
-// A wall 1 m to the right seen 4 to 6.5 degrees off the axis, more obliquely than the
+// The wall 1 m to the right seen 4 to 6.5 degrees off the axis, more obliquely than the
 // breakpoint distance's 10 degrees: its impacts are 0.35-0.9 m apart, beyond that distance,
 // but each in line with the next, so it is still one surface.
 TEST(InverseSensorModelTest, AWallInLineBeyondTheBreakpointDistanceIsJoined) {
   const ScrollingGridGeometry g(GridOptions{});
   constexpr double kWallM = 1.025;
-  const double increment = DegToRad(0.25);
-  const double first = DegToRad(-6.5);
-  std::vector<float> ranges;
-  for (int i = 0; i <= 10; ++i) {
-    ranges.push_back(static_cast<float>(kWallM / std::sin(-(first + i * increment))));
-  }
-  const LidarScan scan = Scan(first, increment, ranges);
+  const LidarScan scan = WallScan(kWallM, 6.5, 4.0);
   const InverseSensorModelOptions o = Options();
-  // Every step lies beyond the breakpoint distance.
-  for (std::size_t i = 0; i + 1 < ranges.size(); ++i) {
-    const double a = first + static_cast<double>(i) * increment;
-    const Vector2d p = static_cast<double>(ranges[i]) * Vector2d(std::cos(a), std::sin(a));
-    const Vector2d q = static_cast<double>(ranges[i + 1]) *
-                       Vector2d(std::cos(a + increment), std::sin(a + increment));
-    ASSERT_GT((q - p).norm(), BreakpointDistance(static_cast<double>(ranges[i + 1]), increment,
+  // Every step lies beyond the breakpoint distance at its nearer impact.
+  for (std::size_t i = 0; i + 1 < scan.ranges_m.size(); ++i) {
+    const double a = scan.BeamAngle(i), b = scan.BeamAngle(i + 1);
+    const auto ra = static_cast<double>(scan.ranges_m[i]);
+    const auto rb = static_cast<double>(scan.ranges_m[i + 1]);
+    const Vector2d p = ra * Vector2d(std::cos(a), std::sin(a));
+    const Vector2d q = rb * Vector2d(std::cos(b), std::sin(b));
+    ASSERT_GT((q - p).norm(), BreakpointDistance(std::min(ra, rb), scan.angle_increment_rad,
                                                  o.surface_incidence_rad, o.surface_range_noise_m));
   }
   const MeasurementGrid m = ComputeInverseSensorModel(scan, Pose2(0.0, 0.0, 0.0), g, o);
   ExpectTouchedIsTheSupport(m);
-  const double x0 = kWallM / std::tan(DegToRad(6.5)), x1 = kWallM / std::tan(DegToRad(4.0));
-  int hits = 0, samples = 0;
-  for (double x = x0; x <= x1; x += 0.01) {
-    ++samples;
-    hits += m.p_occupied[*g.StorageIndexAt(Vector2d(x, -kWallM))] == 0.7f ? 1 : 0;
-  }
+  const auto [hits, samples] = HitsAlongWall(m, g, kWallM, 6.5, 4.0);
   EXPECT_EQ(hits, samples);
 }
 
