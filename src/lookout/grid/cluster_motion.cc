@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -64,6 +65,58 @@ GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
   return c;
 }
 
+// A body of hits: its cells (window-local) and their bounding box.
+struct HitBody {
+  std::vector<CellIndex> cells;
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  int Extent() const { return std::max(x1 - x0, y1 - y0) + 1; }
+};
+
+// The 8-connected body of the cells `member` accepts that holds window-local `start` (itself
+// accepted), breadth-first; marks its cells in `visited`.
+template <typename Member>
+void GrowBody(const ScrollingGridGeometry& g, const CellIndex& start, const Member& member,
+              std::vector<std::uint8_t>& visited, HitBody& body) {
+  body.cells.assign(1, start);
+  body.x0 = body.x1 = start.ix;
+  body.y0 = body.y1 = start.iy;
+  visited[g.StorageIndexOfLocal(start)] = 1;
+  for (std::size_t q = 0; q < body.cells.size(); ++q) {
+    const CellIndex c = body.cells[q];
+    body.x0 = std::min(body.x0, c.ix);
+    body.x1 = std::max(body.x1, c.ix);
+    body.y0 = std::min(body.y0, c.iy);
+    body.y1 = std::max(body.y1, c.iy);
+    for (int y = std::max(0, c.iy - 1); y <= std::min(g.height() - 1, c.iy + 1); ++y) {
+      for (int x = std::max(0, c.ix - 1); x <= std::min(g.width() - 1, c.ix + 1); ++x) {
+        const std::size_t s = g.StorageIndexOfLocal({x, y});
+        if (visited[s] != 0 || !member(s)) continue;
+        visited[s] = 1;
+        body.cells.push_back({x, y});
+      }
+    }
+  }
+}
+
+// The share of the older scan's hits around `body` (its box grown by the displacement) that
+// this scan misses and sees free; nullopt when fewer than two are missed.
+std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
+                                   const ClusterMotion& m) {
+  const int mx = static_cast<int>(std::ceil(std::abs(m.dx_cells))) + 1;
+  const int my = static_cast<int>(std::ceil(std::abs(m.dy_cells))) + 1;
+  int left = 0, vacated = 0;
+  for (int y = std::max(0, body.y0 - my); y <= std::min(older.height - 1, body.y1 + my); ++y) {
+    for (int x = std::max(0, body.x0 - mx); x <= std::min(older.width - 1, body.x1 + mx); ++x) {
+      const std::size_t k = MapIndex(older, x, y);
+      if (older.before[k] == 0 || older.now[k] == 2) continue;
+      ++left;
+      if (older.free_now[k] != 0) ++vacated;
+    }
+  }
+  if (left < 2) return std::nullopt;
+  return static_cast<double>(vacated) / left;
+}
+
 // The still bodies of ClusterMotionOptions::still_bodies. `role` marks the cells the dynamic
 // clusters hold (non-zero).
 void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, const ScanFlow& flow,
@@ -72,86 +125,55 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
                      std::span<float> vx, std::span<float> vy, std::span<float> confidence) {
   const HitMaps* older = flow.long_pair();
   if (older == nullptr) return;
-  const int w = g.width(), h = g.height();
   const int search_half = 2 * options.search_half_cells;
+  const double per_cycle = flow.long_lag_scale();
   const double cells_per_mps = dt_s / g.cell_size_m();
-  std::vector<std::uint8_t> visited(g.CellCount(), 0);
-  const auto candidate = [&](std::size_t s) {
-    return role[s] == 0 && visited[s] == 0 && z.p_occupied[s] > 0.5f &&
+  const auto member = [&](std::size_t s) {
+    return role[s] == 0 && z.p_occupied[s] > 0.5f &&
            static_cast<double>(occupancy[s]) > options.min_occupancy;
   };
-  std::vector<CellIndex> body;
+  const auto speed = [&](const CellIndex& c) {
+    const std::size_t s = g.StorageIndexOfLocal(c);
+    return std::hypot(static_cast<double>(vx[s]), static_cast<double>(vy[s]));
+  };
+  std::vector<std::uint8_t> visited(g.CellCount(), 0);
+  HitBody body;
   // Bodies start from this scan's hits in the measurement's order; each body is measured and
   // written alone, so the order does not change the result.
   for (const std::size_t first : z.touched) {
-    if (!candidate(first)) continue;
-    {
-      const CellIndex start = g.LocalFromGlobal(g.GlobalFromStorage(first));
-      // The body: breadth-first over the 8-neighbourhood.
-      body.assign(1, start);
-      visited[first] = 1;
-      int x0 = start.ix, x1 = start.ix, y0 = start.iy, y1 = start.iy;
-      for (std::size_t q = 0; q < body.size(); ++q) {
-        const CellIndex c = body[q];
-        x0 = std::min(x0, c.ix);
-        x1 = std::max(x1, c.ix);
-        y0 = std::min(y0, c.iy);
-        y1 = std::max(y1, c.iy);
-        for (int y = std::max(0, c.iy - 1); y <= std::min(h - 1, c.iy + 1); ++y) {
-          for (int x = std::max(0, c.ix - 1); x <= std::min(w - 1, c.ix + 1); ++x) {
-            const std::size_t s = g.StorageIndexOfLocal({x, y});
-            if (!candidate(s)) continue;
-            visited[s] = 1;
-            body.push_back({x, y});
-          }
-        }
-      }
-      if (static_cast<int>(body.size()) < options.min_hits ||
-          std::max(x1 - x0, y1 - y0) + 1 > options.still_max_extent_cells) {
-        continue;
-      }
-      const ClusterMotion m = MeasureClusterMotion(*older, body, {0, 0}, search_half, options);
-      if (!m.measured ||
-          std::hypot(m.dx_cells, m.dy_cells) < options.still_min_displacement_cells ||
-          std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
-        continue;
-      }
-      // The body left where it was.
-      const int mx = static_cast<int>(std::ceil(std::abs(m.dx_cells))) + 1;
-      const int my = static_cast<int>(std::ceil(std::abs(m.dy_cells))) + 1;
-      int left = 0, vacated = 0;
-      for (int y = std::max(0, y0 - my); y <= std::min(h - 1, y1 + my); ++y) {
-        for (int x = std::max(0, x0 - mx); x <= std::min(w - 1, x1 + mx); ++x) {
-          const std::size_t k = MapIndex(*older, x, y);
-          if (older->before[k] == 0 || older->now[k] == 2) continue;
-          ++left;
-          if (older->free_now[k] != 0) ++vacated;
-        }
-      }
-      if (left < 2 || vacated < options.still_min_vacated_share * left) continue;
-      // The last cycle agrees.
-      const double per_cycle = flow.long_lag_scale();
-      const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
-      const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
-      int score = 0;
-      for (const CellIndex& c : body) score += BeforeScore(flow.short_pair(), c.ix - sx, c.iy - sy);
-      if (score < options.min_matched_share * 2.0 * static_cast<double>(body.size())) continue;
-      // The grid believed it slower.
-      const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
-      const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
-      double believed = 0.0;
-      for (const CellIndex& c : body) {
-        const std::size_t s = g.StorageIndexOfLocal(c);
-        believed += std::hypot(static_cast<double>(vx[s]), static_cast<double>(vy[s]));
-      }
-      believed /= static_cast<double>(body.size());
-      if (believed > options.still_believed_share * std::hypot(body_vx, body_vy)) continue;
-      for (const CellIndex& c : body) {
-        const std::size_t s = g.StorageIndexOfLocal(c);
-        vx[s] = static_cast<float>(body_vx);
-        vy[s] = static_cast<float>(body_vy);
-        confidence[s] = static_cast<float>(known_confidence);
-      }
+    if (visited[first] != 0 || !member(first)) continue;
+    GrowBody(g, g.LocalFromGlobal(g.GlobalFromStorage(first)), member, visited, body);
+    if (static_cast<int>(body.cells.size()) < options.min_hits ||
+        body.Extent() > options.still_max_extent_cells) {
+      continue;
+    }
+    const ClusterMotion m = MeasureClusterMotion(*older, body.cells, {0, 0}, search_half, options);
+    if (!m.measured || std::hypot(m.dx_cells, m.dy_cells) < options.still_min_displacement_cells ||
+        std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
+      continue;
+    }
+    const std::optional<double> vacated = VacatedShare(*older, body, m);
+    if (!vacated || *vacated < options.still_min_vacated_share) continue;
+    // The last cycle agrees: the hits moved back by one cycle's share land on its scan's.
+    const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
+    const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
+    int score = 0;
+    for (const CellIndex& c : body.cells) {
+      score += BeforeScore(flow.short_pair(), c.ix - sx, c.iy - sy);
+    }
+    if (score < options.min_matched_share * 2.0 * static_cast<double>(body.cells.size())) continue;
+    // The grid believed it slower.
+    const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
+    const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
+    double believed = 0.0;
+    for (const CellIndex& c : body.cells) believed += speed(c);
+    believed /= static_cast<double>(body.cells.size());
+    if (believed > options.still_believed_share * std::hypot(body_vx, body_vy)) continue;
+    for (const CellIndex& c : body.cells) {
+      const std::size_t s = g.StorageIndexOfLocal(c);
+      vx[s] = static_cast<float>(body_vx);
+      vy[s] = static_cast<float>(body_vy);
+      confidence[s] = static_cast<float>(known_confidence);
     }
   }
 }
