@@ -282,6 +282,25 @@ TEST(ApplyClusterMotionTest, AWalkerHeldStillIsMovedAtWhatTheLongBaselineSaw) {
   for (const CellIndex& c : off.arc_now) EXPECT_EQ(off.Vy(c.ix, c.iy), 0.0f);
 }
 
+// A body the grid believes faster than the long baseline measures it (a fast car's piece,
+// under the dynamic clusters' confidence floor, that the long pair aliases to a slow
+// displacement) is not held still: it keeps its own velocity.
+TEST(ApplyClusterMotionTest, ABodyBelievedFasterThanMeasuredIsLeftAlone) {
+  HeldStillScene scene(/*free_elsewhere=*/true);
+  const GridLayers& l = scene.state.layers;
+  for (const CellIndex& c : scene.arc_now) {
+    const std::size_t s = l.geometry().StorageIndexOfLocal(c);
+    scene.state.layers.Values(scene.state.ids.velocity_y_mps)[s] = 3.0f;
+    scene.state.layers.Values(scene.state.ids.velocity_confidence)[s] = 0.2f;
+  }
+  ApplyClusterMotion(scene.state.layers, scene.state.ids, scene.z, scene.flow, kClusterDtS, 0.25,
+                     {});
+  for (const CellIndex& c : scene.arc_now) {
+    EXPECT_EQ(scene.Vy(c.ix, c.iy), 3.0f);
+    EXPECT_FLOAT_EQ(scene.state.Confidence(c.ix, c.iy), 0.2f);
+  }
+}
+
 // The same hits without free space between them (a pattern of hits sliding along a wall as
 // the ego drives: nothing is seen through where they were): not moved.
 TEST(ApplyClusterMotionTest, HitsThatLeaveNothingSeenFreeAreNotMoved) {
