@@ -22,17 +22,8 @@ void RequireClusterMotionOption(bool ok, const std::string& source, const std::s
 
 bool WithinUnit(double v) { return v >= 0.0 && v <= 1.0; }  // NaN: false
 
-bool InsideMaps(const HitMaps& m, int x, int y) {
-  return x >= 0 && y >= 0 && x < m.width && y < m.height;
-}
-
-std::size_t MapIndex(const HitMaps& m, int x, int y) {
-  return static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
-         static_cast<std::size_t>(x);
-}
-
 bool HitBefore(const HitMaps& m, const CellIndex& c) {
-  return InsideMaps(m, c.ix, c.iy) && m.before[MapIndex(m, c.ix, c.iy)] != 0;
+  return m.Inside(c.ix, c.iy) && m.before[m.At(c.ix, c.iy)] != 0;
 }
 
 // The doubled score of one hit now explained by the previous scan at (x, y): 2 for a hit there,
@@ -45,6 +36,14 @@ int BeforeScore(const HitMaps& m, int x, int y) {
     }
   }
   return 0;
+}
+
+// The doubled score of `hits` moved back by (dx, dy): each explained by the baseline's scan
+// there (BeforeScore).
+int ScoreOf(const HitMaps& m, std::span<const CellIndex> hits, int dx, int dy) {
+  int s = 0;
+  for (const CellIndex& h : hits) s += BeforeScore(m, h.ix - dx, h.iy - dy);
+  return s;
 }
 
 // The vertex of the parabola through (-1, a), (0, b), (1, c), b the largest: within
@@ -65,6 +64,10 @@ GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
   return c;
 }
 
+// What a cell is to this cycle's stage: held by a dynamic cluster, attached to one as a hit
+// arriving, or taken into a still body already.
+enum CellRole : std::uint8_t { kFree = 0, kMember, kAttached, kInStillBody };
+
 // A body of hits: its cells (window-local) and their bounding box.
 struct HitBody {
   std::vector<CellIndex> cells;
@@ -72,15 +75,15 @@ struct HitBody {
   int Extent() const { return std::max(x1 - x0, y1 - y0) + 1; }
 };
 
-// The 8-connected body of the cells `member` accepts that holds window-local `start` (itself
-// accepted), breadth-first; marks its cells in `visited`.
+// The 8-connected body of the free cells `member` accepts that holds window-local `start`
+// (itself such a cell), breadth-first; its cells' role becomes kInStillBody.
 template <typename Member>
 void GrowBody(const ScrollingGridGeometry& g, const CellIndex& start, const Member& member,
-              std::vector<std::uint8_t>& visited, HitBody& body) {
+              std::vector<std::uint8_t>& role, HitBody& body) {
   body.cells.assign(1, start);
   body.x0 = body.x1 = start.ix;
   body.y0 = body.y1 = start.iy;
-  visited[g.StorageIndexOfLocal(start)] = 1;
+  role[g.StorageIndexOfLocal(start)] = kInStillBody;
   for (std::size_t q = 0; q < body.cells.size(); ++q) {
     const CellIndex c = body.cells[q];
     body.x0 = std::min(body.x0, c.ix);
@@ -90,8 +93,8 @@ void GrowBody(const ScrollingGridGeometry& g, const CellIndex& start, const Memb
     for (int y = std::max(0, c.iy - 1); y <= std::min(g.height() - 1, c.iy + 1); ++y) {
       for (int x = std::max(0, c.ix - 1); x <= std::min(g.width() - 1, c.ix + 1); ++x) {
         const std::size_t s = g.StorageIndexOfLocal({x, y});
-        if (visited[s] != 0 || !member(s)) continue;
-        visited[s] = 1;
+        if (role[s] != kFree || !member(s)) continue;
+        role[s] = kInStillBody;
         body.cells.push_back({x, y});
       }
     }
@@ -107,7 +110,7 @@ std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
   int left = 0, vacated = 0;
   for (int y = std::max(0, body.y0 - my); y <= std::min(older.height - 1, body.y1 + my); ++y) {
     for (int x = std::max(0, body.x0 - mx); x <= std::min(older.width - 1, body.x1 + mx); ++x) {
-      const std::size_t k = MapIndex(older, x, y);
+      const std::size_t k = older.At(x, y);
       if (older.before[k] == 0 || older.now[k] == 2) continue;
       ++left;
       if (older.free_now[k] != 0) ++vacated;
@@ -117,10 +120,9 @@ std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
   return static_cast<double>(vacated) / left;
 }
 
-// The still bodies of ClusterMotionOptions::still_bodies. `role` marks the cells the dynamic
-// clusters hold (non-zero).
+// The still bodies of ClusterMotionOptions::still_bodies, among the cells `role` leaves free.
 void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, const ScanFlow& flow,
-                     const std::vector<std::uint8_t>& role, double dt_s, double known_confidence,
+                     std::vector<std::uint8_t>& role, double dt_s, double known_confidence,
                      const ClusterMotionOptions& options, std::span<const float> occupancy,
                      std::span<float> vx, std::span<float> vy, std::span<float> confidence) {
   const HitMaps* older = flow.long_pair();
@@ -129,20 +131,18 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
   const double per_cycle = flow.long_lag_scale();
   const double cells_per_mps = dt_s / g.cell_size_m();
   const auto member = [&](std::size_t s) {
-    return role[s] == 0 && z.p_occupied[s] > 0.5f &&
-           static_cast<double>(occupancy[s]) > options.min_occupancy;
+    return z.p_occupied[s] > 0.5f && static_cast<double>(occupancy[s]) > options.min_occupancy;
   };
   const auto speed = [&](const CellIndex& c) {
     const std::size_t s = g.StorageIndexOfLocal(c);
     return std::hypot(static_cast<double>(vx[s]), static_cast<double>(vy[s]));
   };
-  std::vector<std::uint8_t> visited(g.CellCount(), 0);
   HitBody body;
   // Bodies start from this scan's hits in the measurement's order; each body is measured and
   // written alone, so the order does not change the result.
   for (const std::size_t first : z.touched) {
-    if (visited[first] != 0 || !member(first)) continue;
-    GrowBody(g, g.LocalFromGlobal(g.GlobalFromStorage(first)), member, visited, body);
+    if (role[first] != kFree || !member(first)) continue;
+    GrowBody(g, g.LocalFromGlobal(g.GlobalFromStorage(first)), member, role, body);
     if (static_cast<int>(body.cells.size()) < options.min_hits ||
         body.Extent() > options.still_max_extent_cells) {
       continue;
@@ -157,11 +157,10 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
     // The last cycle agrees: the hits moved back by one cycle's share land on its scan's.
     const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
     const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
-    int score = 0;
-    for (const CellIndex& c : body.cells) {
-      score += BeforeScore(flow.short_pair(), c.ix - sx, c.iy - sy);
+    if (ScoreOf(flow.short_pair(), body.cells, sx, sy) <
+        options.min_matched_share * 2.0 * static_cast<double>(body.cells.size())) {
+      continue;
     }
-    if (score < options.min_matched_share * 2.0 * static_cast<double>(body.cells.size())) continue;
     // The grid believed it slower.
     const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
     const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
@@ -225,10 +224,7 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
   CellIndex best{0, 0};  // offset from `predicted`
   for (int oy = -search_half; oy <= search_half; ++oy) {
     for (int ox = -search_half; ox <= search_half; ++ox) {
-      int s = 0;
-      for (const CellIndex& h : hits_now) {
-        s += BeforeScore(maps, h.ix - predicted.ix - ox, h.iy - predicted.iy - oy);
-      }
+      const int s = ScoreOf(maps, hits_now, predicted.ix + ox, predicted.iy + oy);
       score(ox, oy) = s;
       if (s > best_score || (s == best_score && length2(ox, oy) < length2(best.ix, best.iy))) {
         best_score = s;
@@ -280,7 +276,6 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
   const auto hit_now = [&](std::size_t storage) { return z.p_occupied[storage] > 0.5f; };
   // Storage order, across clusters: every cluster's cells first, so that no cluster takes
   // another's cells among its attached hits.
-  enum : std::uint8_t { kFree = 0, kMember, kAttached };
   std::vector<std::uint8_t> role(g.CellCount(), kFree);
   for (const GridCluster& cluster : clusters) {
     for (const std::size_t cell : cluster.cells) role[cell] = kMember;

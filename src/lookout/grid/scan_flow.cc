@@ -20,22 +20,12 @@ void Require(bool ok, const std::string& source, const std::string& field, const
 
 bool InUnit(double v) { return v >= 0.0 && v <= 1.0; }  // NaN: false
 
-// Row-major index of a window-local cell. Precondition: inside.
-std::size_t At(const HitMaps& m, int ix, int iy) {
-  return static_cast<std::size_t>(iy) * static_cast<std::size_t>(m.width) +
-         static_cast<std::size_t>(ix);
-}
-
-bool Inside(const HitMaps& m, int ix, int iy) {
-  return ix >= 0 && iy >= 0 && ix < m.width && iy < m.height;
-}
-
 // The doubled score of a target outside the window: 1 when a hit inside lies next to it (the
 // dilated map holds only the window's cells).
 int OutsideScore(const HitMaps& m, int x, int y) {
   for (int ny = y - 1; ny <= y + 1; ++ny) {
     for (int nx = x - 1; nx <= x + 1; ++nx) {
-      if (Inside(m, nx, ny) && m.now[At(m, nx, ny)] == 2) return 1;
+      if (m.Inside(nx, ny) && m.now[m.At(nx, ny)] == 2) return 1;
     }
   }
   return 0;
@@ -142,19 +132,19 @@ void HitMaps::Reset(int width_cells, int height_cells) {
 }
 
 void HitMaps::AddBefore(int ix, int iy) {
-  if (Inside(*this, ix, iy)) before[At(*this, ix, iy)] = 1;
+  if (Inside(ix, iy)) before[At(ix, iy)] = 1;
 }
 
 void HitMaps::AddFreeNow(int ix, int iy) {
-  if (Inside(*this, ix, iy)) free_now[At(*this, ix, iy)] = 1;
+  if (Inside(ix, iy)) free_now[At(ix, iy)] = 1;
 }
 
 void HitMaps::AddNow(int ix, int iy) {
-  if (!Inside(*this, ix, iy)) return;
+  if (!Inside(ix, iy)) return;
   for (int y = iy - 1; y <= iy + 1; ++y) {
     for (int x = ix - 1; x <= ix + 1; ++x) {
-      if (!Inside(*this, x, y)) continue;
-      std::uint8_t& v = now[At(*this, x, y)];
+      if (!Inside(x, y)) continue;
+      std::uint8_t& v = now[At(x, y)];
       v = std::max<std::uint8_t>(v, x == ix && y == iy ? 2 : 1);
     }
   }
@@ -173,9 +163,9 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
   const int p = options.patch_half_cells;
   for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
     for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
-      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) {
+      if (maps.Inside(x, y) && maps.before[maps.At(x, y)] != 0) {
         hits[n++] = {x, y};
-        if (maps.free_now[At(maps, x, y)] != 0) ++vacated;
+        if (maps.free_now[maps.At(x, y)] != 0) ++vacated;
       }
     }
   }
@@ -198,13 +188,13 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
       const int y = hits[k].y + dy;
       int* row = &scores[static_cast<std::size_t>((dy + half) * side)];
       if (row_inside && y >= 0 && y < maps.height) {
-        const std::uint8_t* now = &maps.now[At(maps, x0, y)];
+        const std::uint8_t* now = &maps.now[maps.At(x0, y)];
         for (int i = 0; i < side; ++i) row[i] += now[i];
         continue;
       }
       for (int i = 0; i < side; ++i) {
         const int x = x0 + i;
-        row[i] += Inside(maps, x, y) ? maps.now[At(maps, x, y)] : OutsideScore(maps, x, y);
+        row[i] += maps.Inside(x, y) ? maps.now[maps.At(x, y)] : OutsideScore(maps, x, y);
       }
     }
   }
@@ -223,9 +213,9 @@ FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
   int vacated = 0;  // previous hits this scan sees free
   for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
     for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
-      if (Inside(maps, x, y) && maps.before[At(maps, x, y)] != 0) {
+      if (maps.Inside(x, y) && maps.before[maps.At(x, y)] != 0) {
         ++hits;
-        if (maps.free_now[At(maps, x, y)] != 0) ++vacated;
+        if (maps.free_now[maps.At(x, y)] != 0) ++vacated;
       }
     }
   }
@@ -234,13 +224,13 @@ FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
     int s = 0;
     for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
       for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
-        if (!Inside(maps, x, y) || maps.before[At(maps, x, y)] == 0) continue;
+        if (!maps.Inside(x, y) || maps.before[maps.At(x, y)] == 0) continue;
         const int tx = x + d.ix;
         const int ty = y + d.iy;
         int best = 0;
         for (int ny = ty - 1; ny <= ty + 1; ++ny) {
           for (int nx = tx - 1; nx <= tx + 1; ++nx) {
-            if (!Inside(maps, nx, ny) || maps.now[At(maps, nx, ny)] != 2) continue;
+            if (!maps.Inside(nx, ny) || maps.now[maps.At(nx, ny)] != 2) continue;
             best = std::max(best, nx == tx && ny == ty ? 2 : 1);
           }
         }
@@ -313,7 +303,7 @@ FlowMeasurement ScanFlow::Measure(const CellIndex& cell) const {
     bool from_hit = false;
     for (int y = from_y - 1; y <= from_y + 1; ++y) {
       for (int x = from_x - 1; x <= from_x + 1; ++x) {
-        from_hit = from_hit || (Inside(maps_, x, y) && maps_.before[At(maps_, x, y)] != 0);
+        from_hit = from_hit || (maps_.Inside(x, y) && maps_.before[maps_.At(x, y)] != 0);
       }
     }
     if (!from_hit) return one;
@@ -345,15 +335,15 @@ std::vector<FlowMeasurement> ScanFlow::MeasureCells(std::span<const CellIndex> c
     if (m.kind == FlowKind::kMoves) {
       queue.push_back(i);
     } else if (m.kind == FlowKind::kUnknown || m.ambiguous) {
-      index[At(maps_, cells[i].ix, cells[i].iy)] = static_cast<std::int32_t>(i);
+      index[maps_.At(cells[i].ix, cells[i].iy)] = static_cast<std::int32_t>(i);
     }
   }
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const CellIndex c = cells[queue[head]];
     for (int y = c.iy - kLinkRadius; y <= c.iy + kLinkRadius; ++y) {
       for (int x = c.ix - kLinkRadius; x <= c.ix + kLinkRadius; ++x) {
-        if (!Inside(maps_, x, y)) continue;
-        std::int32_t& j = index[At(maps_, x, y)];
+        if (!maps_.Inside(x, y)) continue;
+        std::int32_t& j = index[maps_.At(x, y)];
         if (j < 0) continue;
         const auto k = static_cast<std::size_t>(j);
         j = -1;  // visited

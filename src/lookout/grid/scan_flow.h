@@ -105,6 +105,14 @@ struct HitMaps {
   std::vector<std::uint8_t> now;
   std::vector<std::uint8_t> free_now;
 
+  // Whether window-local (ix, iy) is on the maps, and its row-major index (precondition:
+  // Inside).
+  bool Inside(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < width && iy < height; }
+  std::size_t At(int ix, int iy) const {
+    return static_cast<std::size_t>(iy) * static_cast<std::size_t>(width) +
+           static_cast<std::size_t>(ix);
+  }
+
   // Empty maps of the given size.
   void Reset(int width_cells, int height_cells);
   // Marks a hit of the previous / this scan at window-local (ix, iy); outside is ignored.
