@@ -64,6 +64,11 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
       previous_segments_ ? lidar::StaticOnMovingTrace(*previous_segments_, scan, state->pose,
                                                       hits_.beam, options_.segment_motion)
                          : std::vector<std::uint8_t>{};
+  // Returns the map holds that are no mover's trace: they make no trace for the next scan.
+  std::vector<std::uint8_t> standing(hits_.beam.size(), 0);
+  for (std::size_t i = 0; i < standing.size(); ++i) {
+    standing[i] = lidar::IsStanding(hits_.beam, on_moving_trace, i);
+  }
   const std::vector<lidar::ScanCluster> clusters = lidar::ClusterScan(
       scan, hits_.beam, options_.segmentation, options_.hits.min_range_m, nullptr, on_moving_trace);
   // Motion the map cannot see (lidar/segment_motion.h), before the objects take the classes.
@@ -84,7 +89,8 @@ void LidarChainStage::OnLidar(const LidarScan& scan) {
   // (static) stay out of it, so the trace does not follow the actor. The rule's thresholds
   // keep a wall with a stray dynamic return in the map (docs/lidar-chain.md).
   lidar::PropagateDynamicSegments(scan, clusters, options_.dynamic_segments, hits_);
-  previous_segments_ = lidar::DescribeSegments(scan, state->pose, clusters, own_motion, carried);
+  previous_segments_ =
+      lidar::DescribeSegments(scan, state->pose, clusters, own_motion, carried, standing);
   const Clock::time_point segmented = Clock::now();
   std::vector<bool> unmapped;
   if (options_.map_static_only && options_.unmap_dynamic_segments) {

@@ -298,19 +298,14 @@ std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitC
                                      const SegmentationOptions& options, double min_range_m,
                                      SegmentationStats* stats,
                                      std::span<const std::uint8_t> on_moving_trace) {
-  // One static and one not (dynamic, or unknown: a walker's edge return in cells the map has
-  // not settled): the map tells the two apart, unless the static one lies on a mover's trace.
-  const auto standing = [&](std::size_t i) {
-    return classes[i] == HitClass::kStatic &&
-           !(i < on_moving_trace.size() && on_moving_trace[i] != 0);
-  };
+  // One standing (static, and not on a mover's trace) and one not (dynamic; unknown: a walker's
+  // edge return in cells the map has not settled; static on a mover's trace: the mover's own):
+  // the map tells the two apart.
   const auto classes_differ = [&](std::size_t a, std::size_t b) {
     if (classes.empty()) return false;
-    const auto moving_or_unknown = [](HitClass c) {
-      return c == HitClass::kDynamic || c == HitClass::kUnknown;
-    };
-    return (standing(a) && moving_or_unknown(classes[b])) ||
-           (standing(b) && moving_or_unknown(classes[a]));
+    const auto returned = [&](std::size_t i) { return classes[i] != HitClass::kNoReturn; };
+    return returned(a) && returned(b) &&
+           IsStanding(classes, on_moving_trace, a) != IsStanding(classes, on_moving_trace, b);
   };
   std::vector<ScanCluster> clusters;
   SegmentationStats local;

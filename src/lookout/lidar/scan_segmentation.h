@@ -111,6 +111,14 @@ struct SegmentationStats {
   std::int64_t no_returns = 0;     // beams that were not returns
 };
 
+// Whether return `i` stands: static in `classes` and not on a mover's own trace
+// (`on_moving_trace`, one per beam or empty: none is).
+inline bool IsStanding(std::span<const HitClass> classes,
+                       std::span<const std::uint8_t> on_moving_trace, std::size_t i) {
+  return classes[i] == HitClass::kStatic &&
+         !(i < on_moving_trace.size() && on_moving_trace[i] != 0);
+}
+
 // The clusters of `scan` (every return, whatever its class); `classes` (one per beam, or empty:
 // none known) only splits at class_break_m. Pure; O(beams).
 // `on_moving_trace` (one per beam, or empty): static returns on a mover's own trace

@@ -304,6 +304,12 @@ TEST(ScanSegmentation, AStaticReturnBesideAMovingOneBeyondTheClassBreakIsAnother
   std::vector<std::uint8_t> on_trace(scan.ranges_m.size(), 0);
   for (std::size_t i = 0; i < classes.size(); ++i) on_trace[i] = classes[i] == HitClass::kStatic;
   EXPECT_EQ(ClusterScan(scan, classes, o, 0.1, nullptr, on_trace).size(), 1u);
+  // But a standing return is another object beside the mover's returns on its own trace (a lamp
+  // post before a walker whose returns land on the cells it just left: both static to the map).
+  const std::vector<HitClass> all_static(scan.ranges_m.size(), HitClass::kStatic);
+  std::vector<std::uint8_t> walker_trace(scan.ranges_m.size(), 0);
+  for (std::size_t i = 0; i < walker_trace.size(); ++i) walker_trace[i] = scan.BeamAngle(i) >= 0.0;
+  EXPECT_EQ(ClusterScan(scan, all_static, o, 0.1, nullptr, walker_trace).size(), 2u);
   EXPECT_EQ(ClusterScan(StepScan(17.6, 0.25), classes, o, 0.1).size(), 1u);
   SegmentationOptions off = o;
   off.class_break_m = 0.0;

@@ -188,7 +188,9 @@ std::vector<std::uint8_t> StaticOnMovingTrace(const ScanSegments& previous, cons
   std::vector<std::uint8_t> out(classes.size(), 0);
   std::vector<Eigen::Vector2d> moving_points;
   for (std::size_t k = 0; k < previous.points.size(); ++k) {
-    if (previous.moving[previous.segment[k]]) moving_points.push_back(previous.points[k]);
+    if (previous.moving[previous.segment[k]] && previous.own[k]) {
+      moving_points.push_back(previous.points[k]);
+    }
   }
   if (moving_points.empty()) return out;
   const double r2 = options.trace_radius_m * options.trace_radius_m;
@@ -207,7 +209,8 @@ std::vector<std::uint8_t> StaticOnMovingTrace(const ScanSegments& previous, cons
 
 ScanSegments DescribeSegments(const LidarScan& scan, const Pose2& vehicle_pose,
                               std::span<const ScanCluster> clusters, const std::vector<bool>& own,
-                              std::span<const int> carried) {
+                              std::span<const int> carried,
+                              std::span<const std::uint8_t> standing) {
   ScanSegments out;
   out.moving.assign(clusters.size(), false);
   out.carried_scans.assign(clusters.size(), 0);
@@ -215,6 +218,7 @@ ScanSegments DescribeSegments(const LidarScan& scan, const Pose2& vehicle_pose,
     for (std::size_t i : clusters[s].beams) {
       out.points.push_back(vehicle_pose * ReturnPoint(scan, i));
       out.segment.push_back(s);
+      out.own.push_back(i >= standing.size() || standing[i] == 0);
     }
     const bool is_carried = s < carried.size() && carried[s] >= 0;
     out.moving[s] = (s < own.size() && own[s]) || is_carried;

@@ -61,6 +61,11 @@ struct SegmentMotionOptions {
 struct ScanSegments {
   std::vector<Eigen::Vector2d> points;  // every return of every segment, map frame
   std::vector<std::size_t> segment;     // the segment of each point
+  // Per point: not a return the map called static, unless it lay on a mover's trace itself.
+  // Only these make a trace: a pole that joined a walker's segment (both within the class
+  // break) would otherwise be on the trace of its own returns of the scan before, scan after
+  // scan, and stay with the walker once it had gone 0.3 m past it (the crowd's lamp posts).
+  std::vector<bool> own;
   std::vector<bool> moving;             // per segment
   std::vector<int> carried_scans;       // per segment: scans since its own evidence of motion
 };
@@ -91,17 +96,20 @@ std::vector<int> CarrySegmentMotion(const ScanSegments& previous, const LidarSca
                                     const SegmentMotionOptions& options, ScanHitClasses& classes);
 
 // Per beam of `scan`, 1 where `classes` calls the return static and it lies within
-// options.trace_radius_m of a return of a moving segment of `previous`: the mover's own trace,
-// which the map holds, not a standing object (SegmentationOptions::class_break_m).
+// options.trace_radius_m of a return of a moving segment of `previous` that is the mover's own
+// (ScanSegments::own): the mover's own trace, which the map holds, not a standing object
+// (SegmentationOptions::class_break_m).
 std::vector<std::uint8_t> StaticOnMovingTrace(const ScanSegments& previous, const LidarScan& scan,
                                               const Pose2& vehicle_pose,
                                               std::span<const HitClass> classes,
                                               const SegmentMotionOptions& options);
 
 // The segments of `scan` for the next scan: `clusters` in the map frame, moving when `own`
-// (OwnMotionEvidence) or carried (CarrySegmentMotion's result).
+// (OwnMotionEvidence) or carried (CarrySegmentMotion's result). `standing`, per beam (empty:
+// none), is 1 where the map called the return static and StaticOnMovingTrace did not flag it.
 ScanSegments DescribeSegments(const LidarScan& scan, const Pose2& vehicle_pose,
                               std::span<const ScanCluster> clusters, const std::vector<bool>& own,
-                              std::span<const int> carried);
+                              std::span<const int> carried,
+                              std::span<const std::uint8_t> standing = {});
 
 }  // namespace lookout::lidar

@@ -57,12 +57,13 @@ std::size_t ClusterAt(const LidarScan& scan, const std::vector<ScanCluster>& clu
 }
 
 // The previous scan's segments, the one at `moving_x` moving by its own evidence (none: NaN).
-ScanSegments Previous(const LidarScan& scan, double moving_x, const Pose2& pose = Pose2()) {
+ScanSegments Previous(const LidarScan& scan, double moving_x, const Pose2& pose = Pose2(),
+                      std::span<const std::uint8_t> standing = {}) {
   const std::vector<ScanCluster> clusters = ClusterScan(scan, {}, SegmentationOptions{}, kMinRange);
   std::vector<bool> own(clusters.size(), false);
   if (!std::isnan(moving_x)) own[ClusterAt(scan, clusters, moving_x)] = true;
   const std::vector<int> none(clusters.size(), -1);
-  return DescribeSegments(scan, pose, clusters, own, none);
+  return DescribeSegments(scan, pose, clusters, own, none, standing);
 }
 
 // The segment of the previous scan's returns nearer than 20 m (the car's; the wall is at 30 m).
@@ -264,6 +265,13 @@ TEST(SegmentMotion, StaticReturnsOnAMoversTraceAreFlagged) {
   EXPECT_GT(car_returns, 5);
   EXPECT_EQ(car, car_returns);
   EXPECT_EQ(wall, 0);
+  // Returns the map held standing in the scan before (a pole that joined a walker's segment
+  // within the class break) make no trace, though their segment moved.
+  const std::vector<std::uint8_t> standing(before.ranges_m.size(), 1);
+  const std::vector<std::uint8_t> held =
+      StaticOnMovingTrace(Previous(before, 10.0, Pose2(), standing), after, Pose2(), classes.beam,
+                          SegmentMotionOptions{});
+  EXPECT_EQ(std::count(held.begin(), held.end(), std::uint8_t{1}), 0);
   // Nothing moved before: nothing is a trace.
   const std::vector<std::uint8_t> none = StaticOnMovingTrace(
       Previous(before, kNone), after, Pose2(), classes.beam, SegmentMotionOptions{});
