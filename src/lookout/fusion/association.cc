@@ -9,7 +9,8 @@ namespace lookout::fusion {
 
 std::vector<AssociationPair> AssociateStereoToLidar(
     const std::vector<stereo::CartesianPoint>& stereo_points,
-    const std::vector<stereo::CartesianPoint>& lidar_points, const AssociationGate& gate) {
+    const std::vector<stereo::CartesianPoint>& lidar_points, const AssociationGate& gate,
+    std::span<const PairPrior> priors) {
   const auto n = static_cast<Eigen::Index>(stereo_points.size());
   const auto m = static_cast<Eigen::Index>(lidar_points.size());
   std::vector<AssociationPair> pairs;
@@ -20,11 +21,27 @@ std::vector<AssociationPair> AssociateStereoToLidar(
   Eigen::MatrixXd distance = Eigen::MatrixXd::Constant(n, m, assignment::kForbidden);
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto& s = stereo_points[static_cast<std::size_t>(i)];
+    const auto own = static_cast<std::size_t>(i);
     for (Eigen::Index j = 0; j < m; ++j) {
       const auto& l = lidar_points[static_cast<std::size_t>(j)];
       const double d2 = gate.DistanceSquared(s.point_m, s.covariance, l.point_m, l.covariance);
       distance(i, j) = d2;
-      if (gate.Accepts(d2)) cost(i, j) = d2;
+      if (!gate.Accepts(d2)) continue;
+      const auto holds = [&](const PairPrior& p) {
+        return gate.Accepts(
+            gate.DistanceSquared(p.point.point_m, p.point.covariance, l.point_m, l.covariance));
+      };
+      bool own_prior = false, own_holds = false, other_holds = false;
+      for (const PairPrior& p : priors) {
+        if (p.stereo == own) {
+          own_prior = true;
+          own_holds = own_holds || holds(p);
+        } else {
+          other_holds = other_holds || holds(p);
+        }
+      }
+      if (own_prior && !own_holds && other_holds) continue;
+      cost(i, j) = d2;
     }
     cost(i, m + i) = gate.threshold();
   }

@@ -11,6 +11,8 @@
 // stereo object out.
 
 #include <cstddef>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "lookout/fusion/gate.h"
@@ -24,9 +26,20 @@ struct AssociationPair {
   double distance_squared = 0.0;
 };
 
-// Pairs in increasing stereo index. Pure.
+// Where a camera track's previous pair puts its body now (pair_memory.h), and the track's
+// stereo point in this frame, if the camera reported it.
+struct PairPrior {
+  std::optional<std::size_t> stereo;  // index into the stereo points
+  stereo::CartesianPoint point;
+};
+
+// Pairs in increasing stereo index. Pure. `priors`: a stereo point whose own prior's gate does
+// not hold a lidar point does not pair with it when another camera track's prior holds it
+// (that body's own, its camera object missed or elsewhere); a lidar point no other prior holds
+// may pair (the prior may be the one that was wrong).
 std::vector<AssociationPair> AssociateStereoToLidar(
     const std::vector<stereo::CartesianPoint>& stereo_points,
-    const std::vector<stereo::CartesianPoint>& lidar_points, const AssociationGate& gate);
+    const std::vector<stereo::CartesianPoint>& lidar_points, const AssociationGate& gate,
+    std::span<const PairPrior> priors = {});
 
 }  // namespace lookout::fusion

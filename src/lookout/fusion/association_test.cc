@@ -51,6 +51,26 @@ TEST(AssociationTest, OneToOneAndOptimal) {
   EXPECT_EQ(pairs[1].lidar, 0u);  // s1 - l0: 1.21 (greedy: s0-l0 0.81, then s1 has no partner)
 }
 
+// Walker A's camera object, its depth uncertain along the ray, and walker B's segment 0.9 m
+// beyond it: in A's gate. A's own segment is missing (hidden), B's camera object too.
+TEST(AssociationTest, AnotherCameraTracksPriorKeepsItsBody) {
+  const AssociationGate gate(FusionOptions{});
+  const stereo::CartesianPoint a_camera{Vector2d(20.0, 0.0), Vector2d(0.2, 0.0025).asDiagonal()};
+  const std::vector<stereo::CartesianPoint> stereo = {a_camera};
+  const std::vector<stereo::CartesianPoint> lidar = {Point(20.9, 0.1, 0.002)};
+  ASSERT_EQ(AssociateStereoToLidar(stereo, lidar, gate).size(), 1u);  // paired afresh
+  const PairPrior a{0, Point(20.0, 0.0, 0.01)};
+  const PairPrior b{std::nullopt, Point(20.9, 0.1, 0.01)};  // B's camera object not in this frame
+  // B's prior holds the segment and A's does not: not A's.
+  EXPECT_TRUE(AssociateStereoToLidar(stereo, lidar, gate, std::vector<PairPrior>{a, b}).empty());
+  // No other prior holds it: A's prior may be the one that was wrong, the pair stands.
+  EXPECT_EQ(AssociateStereoToLidar(stereo, lidar, gate, std::vector<PairPrior>{a}).size(), 1u);
+  // A's prior holds it too (the two walkers side by side): the pair stands.
+  const PairPrior a_near{0, Point(20.8, 0.1, 0.01)};
+  EXPECT_EQ(AssociateStereoToLidar(stereo, lidar, gate, std::vector<PairPrior>{a_near, b}).size(),
+            1u);
+}
+
 TEST(AssociationTest, EmptyInputs) {
   const AssociationGate gate(FusionOptions{});
   EXPECT_TRUE(AssociateStereoToLidar({}, {Point(1, 1, 1)}, gate).empty());

@@ -178,7 +178,7 @@ std::vector<bool> Pieces(std::span<const LidarObject* const> lidar, const Pairin
 
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
-                              const FusionOptions& options) {
+                              const FusionOptions& options, std::span<const PairPrior> priors) {
   FuseObjectsResult result;
   result.frame.stamp = lidar.stamp;
   result.frame.mount = lidar.mount;
@@ -210,7 +210,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
           ? ChiSquareQuantile(options.disagreement_probability, 2.0)
           : std::numeric_limits<double>::infinity();
   const std::vector<AssociationPair> pairs =
-      AssociateStereoToLidar(stereo_points, lidar_points, gate);
+      AssociateStereoToLidar(stereo_points, lidar_points, gate, priors);
   result.pairs = pairs.size();
   Pairing pairing(lidar_objects.size(), stereo.size());
   for (const AssociationPair& pair : pairs) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "lookout/core/messages.h"
+#include "lookout/fusion/association.h"
 #include "lookout/fusion/fused_object.h"
 #include "lookout/fusion/fusion_options.h"
 #include "lookout/fusion/gate.h"
@@ -71,9 +72,12 @@ struct FuseObjectsResult {
 // earlier) or that the camera paired is a piece of that body: left out and counted. Static
 // objects are not judged (the tracking stage takes no static lidar-only object), and a paired
 // object is never a piece.
+//
+// `priors`: where the camera tracks' previous pairs put their bodies now (FusionEngine,
+// PredictPairPrior), for the point gate (AssociateStereoToLidar).
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
-                              const FusionOptions& options);
+                              const FusionOptions& options, std::span<const PairPrior> priors = {});
 
 // The distance between two lidar objects' front segments (0 where they cross). Pure.
 double FrontSegmentDistance(const LidarObject& a, const LidarObject& b);

@@ -64,7 +64,33 @@ FusedObjectFrame FusionEngine::FuseWith(const LidarObjectFrame& lidar, const Ste
       }
     }
   }
-  FuseObjectsResult result = FuseObjects(lidar, stereo_, options_);
+  // Each camera track's last pair where it puts the body now; then this frame's pairs
+  // remembered, and memories too old to use forgotten.
+  std::vector<PairPrior> priors;
+  if (options_.pair_memory_s > 0.0) {
+    for (const auto& [id, memory] : pairs_) {
+      const std::optional<stereo::CartesianPoint> prior =
+          PredictPairPrior(memory, lidar.stamp, lidar.ego_pose, options_.acceleration_sigma_mps2,
+                           options_.pair_memory_s);
+      if (!prior) continue;
+      PairPrior p{std::nullopt, *prior};
+      for (std::size_t i = 0; i < stereo_.size(); ++i) {
+        if (stereo_[i].id == id) p.stereo = i;
+      }
+      priors.push_back(p);
+    }
+  }
+  FuseObjectsResult result = FuseObjects(lidar, stereo_, options_, priors);
+  if (options_.pair_memory_s > 0.0) {
+    for (const FusedObject& f : result.frame.objects) {
+      if (f.sensor_count != 2 || !f.stereo_id || f.footprint_pair) continue;
+      pairs_[*f.stereo_id] = RememberPair(f, lidar.stamp, lidar.ego_pose);
+    }
+    std::erase_if(pairs_, [&](const auto& entry) {
+      return ToSeconds(lidar.stamp - entry.second.stamp) > options_.pair_memory_s ||
+             entry.second.stamp > lidar.stamp;
+    });
+  }
   stats_.pairs += static_cast<std::int64_t>(result.pairs);
   stats_.lidar_objects_dropped += static_cast<std::int64_t>(result.dropped_lidar_ids.size());
   stats_.lidar_fragments += static_cast<std::int64_t>(result.fragment_lidar_ids.size());

@@ -10,12 +10,14 @@
 // stereo frame at another stamp than the lidar's is not used for that one frame (counted).
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <vector>
 
 #include "lookout/core/messages.h"
 #include "lookout/fusion/fused_object.h"
 #include "lookout/fusion/fusion_options.h"
+#include "lookout/fusion/pair_memory.h"
 #include "lookout/stereo/stereo_point.h"
 #include "lookout/stereo/stereo_validation.h"
 
@@ -72,6 +74,8 @@ class FusionEngine {
   std::vector<stereo::Drop> drops_;
   LidarObjectFrame lidar_;
   std::vector<std::uint32_t> left_out_;
+  // By camera track id: its last pair (pair_memory.h). A map, for a deterministic order.
+  std::map<std::uint32_t, PairMemory> pairs_;
 };
 
 }  // namespace lookout::fusion

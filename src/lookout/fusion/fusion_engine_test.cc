@@ -144,6 +144,77 @@ TEST(FusionEngineTest, InvalidOptionsNameTheField) {
   expect_rejected(disagreement, "disagreement_probability");
 }
 
+// Two walkers standing one behind the other on the camera's ray, A at 22.5 m and B 0.9 m
+// beyond, both seen by both sensors; then A's segment is hidden and B's camera object missed.
+// A's camera object, its depth uncertain by 0.45 m, still has B's segment in its gate: paired
+// afresh each frame, A would be fused with B's body. B's last pair holds B's segment, A's does
+// not: the pair is refused, A is the camera's alone and B the lidar's.
+TEST(FusionEngineTest, ACameraTrackKeepsItsBody) {
+  const auto walker_camera = [](std::uint32_t id, const Vector2d& centre_vehicle) {
+    StereoObject o;
+    o.id = id;
+    o.object_class = ObjectClass::kPedestrian;
+    o.center_m = kCameraMount.Inverse() * centre_vehicle;
+    o.length_m = 0.6;
+    o.width_m = 0.6;
+    o.center_covariance = Vector2d(0.2, 0.0025).asDiagonal();
+    o.yaw_variance = 0.0025;
+    o.speed_variance = 0.1;
+    o.history = 5;
+    return o;
+  };
+  const auto walker_lidar = [](std::uint32_t id, const Vector2d& front) {
+    LidarObject o;
+    o.id = id;
+    o.point_m = front;
+    o.point_covariance = 0.002 * Matrix2d::Identity();
+    o.front_start_m = front + Vector2d(0.0, -0.2);
+    o.front_end_m = front + Vector2d(0.0, 0.2);
+    o.velocity_covariance = Matrix2d::Identity();
+    o.class_pmf = {1.0, 0, 0, 0, 0, 0};
+    o.dynamic = true;
+    return o;
+  };
+  const Vector2d a(22.5, 0.0), b(23.4, 0.1);
+  const auto frame = [&](TimeNs t, std::vector<LidarObject> lidar,
+                         std::vector<StereoObject> camera) {
+    LidarObjectFrame l;
+    l.stamp = t;
+    l.mount = kLidarMount;
+    l.objects = std::move(lidar);
+    StereoFrame s;
+    s.stamp = t;
+    s.mount = kCameraMount;
+    s.objects = std::move(camera);
+    return std::pair{l, s};
+  };
+  const auto first =
+      frame(0, {walker_lidar(1, a - Vector2d(0.3, 0.0)), walker_lidar(2, b - Vector2d(0.3, 0.0))},
+            {walker_camera(11, a), walker_camera(12, b)});
+  const auto second =
+      frame(80'000'000, {walker_lidar(2, b - Vector2d(0.3, 0.0))}, {walker_camera(11, a)});
+  const auto stereo_of_lidar_2 = [](const FusedObjectFrame& f) {
+    for (const FusedObject& o : f.objects) {
+      if (o.lidar_id == 2u) return o.stereo_id;
+    }
+    return std::optional<std::uint32_t>{};
+  };
+  FusionOptions afresh;
+  afresh.pair_memory_s = 0.0;
+  for (const bool memory : {false, true}) {
+    FusionEngine engine(memory ? FusionOptions{} : afresh);
+    const FusedObjectFrame f1 = engine.Fuse(first.first, first.second);
+    EXPECT_EQ(stereo_of_lidar_2(f1), 12u);
+    const FusedObjectFrame f2 = engine.Fuse(second.first, second.second);
+    if (memory) {
+      EXPECT_FALSE(stereo_of_lidar_2(f2).has_value());
+      EXPECT_EQ(f2.objects.size(), 2u);  // B the lidar's, A the camera's
+    } else {
+      EXPECT_EQ(stereo_of_lidar_2(f2), 11u);  // A's camera object on B's body
+    }
+  }
+}
+
 // Same input, same bytes out.
 TEST(FusionEngineTest, Deterministic) {
   FusionEngine a, b;

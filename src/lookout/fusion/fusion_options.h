@@ -57,6 +57,10 @@ struct FusionOptions {
   // the velocity. 3 m/s^2 covers braking and a pedestrian's start.
   double acceleration_sigma_mps2 = 3.0;
 
+  // A camera track's last pair as a second gate for its next (pair_memory.h): kept this long
+  // (a lidar frame is 80 ms); 0: off, each frame pairs afresh as the paper does.
+  double pair_memory_s = 0.3;
+
   VelocitySource velocity_source = VelocitySource::kInformationWeighted;
 
   // A stereo class becomes a pmf: the reported class with this probability, the rest spread
