@@ -114,6 +114,27 @@ void BM_FuseObjects(benchmark::State& state) {
 }
 BENCHMARK(BM_FuseObjects)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
 
+// With each camera track's last pair as a prior (pair_memory.h), one per stereo object at its
+// own point, as on every frame after the first.
+void BM_FuseObjectsWithPriors(benchmark::State& state) {
+  const Scene scene = MakeScene(static_cast<int>(state.range(0)));
+  const FusionOptions options;
+  const stereo::ProjectedStereoFrame projected =
+      stereo::ProjectStereoFrame(scene.stereo, kLidarMount, options.stereo);
+  std::vector<PairPrior> priors;
+  for (std::size_t i = 0; i < projected.objects.size(); ++i) {
+    priors.push_back({i, projected.objects[i].point});
+  }
+  std::size_t pairs = 0;
+  for (auto _ : state) {
+    const FuseObjectsResult result = FuseObjects(scene.lidar, projected.objects, options, priors);
+    pairs = result.pairs;
+    benchmark::DoNotOptimize(result.frame.objects.data());
+  }
+  state.counters["pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(BM_FuseObjectsWithPriors)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
+
 void BM_FuseObjectsWithPieces(benchmark::State& state) {
   const Scene scene = MakeScene(static_cast<int>(state.range(0)), true);
   const FusionOptions options;

@@ -19,28 +19,35 @@ std::vector<AssociationPair> AssociateStereoToLidar(
   // its own row, at the gate's cost.
   Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(n, m + n, assignment::kForbidden);
   Eigen::MatrixXd distance = Eigen::MatrixXd::Constant(n, m, assignment::kForbidden);
+  // Which priors hold each lidar point: how many, and per stereo point whether its own does.
+  // O(priors x lidar points) once, not per pair.
+  std::vector<int> holders(static_cast<std::size_t>(m), 0);
+  std::vector<std::optional<std::size_t>> own_prior(static_cast<std::size_t>(n));
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> holds(
+      static_cast<Eigen::Index>(priors.size()), m);
+  for (std::size_t k = 0; k < priors.size(); ++k) {
+    const PairPrior& p = priors[k];
+    if (p.stereo && *p.stereo < static_cast<std::size_t>(n)) own_prior[*p.stereo] = k;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const auto& l = lidar_points[static_cast<std::size_t>(j)];
+      const bool held = gate.Accepts(
+          gate.DistanceSquared(p.point.point_m, p.point.covariance, l.point_m, l.covariance));
+      holds(static_cast<Eigen::Index>(k), j) = held;
+      holders[static_cast<std::size_t>(j)] += held ? 1 : 0;
+    }
+  }
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto& s = stereo_points[static_cast<std::size_t>(i)];
-    const auto own = static_cast<std::size_t>(i);
+    const std::optional<std::size_t> own = own_prior[static_cast<std::size_t>(i)];
     for (Eigen::Index j = 0; j < m; ++j) {
       const auto& l = lidar_points[static_cast<std::size_t>(j)];
       const double d2 = gate.DistanceSquared(s.point_m, s.covariance, l.point_m, l.covariance);
       distance(i, j) = d2;
       if (!gate.Accepts(d2)) continue;
-      const auto holds = [&](const PairPrior& p) {
-        return gate.Accepts(
-            gate.DistanceSquared(p.point.point_m, p.point.covariance, l.point_m, l.covariance));
-      };
-      bool own_prior = false, own_holds = false, other_holds = false;
-      for (const PairPrior& p : priors) {
-        if (p.stereo == own) {
-          own_prior = true;
-          own_holds = own_holds || holds(p);
-        } else {
-          other_holds = other_holds || holds(p);
-        }
+      if (own && !holds(static_cast<Eigen::Index>(*own), j) &&
+          holders[static_cast<std::size_t>(j)] > 0) {
+        continue;  // another camera track's body
       }
-      if (own_prior && !own_holds && other_holds) continue;
       cost(i, j) = d2;
     }
     cost(i, m + i) = gate.threshold();
