@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -85,6 +86,7 @@ void LidarPointModelOptions::Validate() const {
                     "corner_min_segment_m", "must be finite and >= 0");
   RequirePointModel(std::isfinite(camera_size_sigma_m) && camera_size_sigma_m >= 0.0,
                     "camera_size_sigma_m", "must be finite and >= 0");
+  RequirePointModel(positive(range_sigma_m), "range_sigma_m", "must be finite and > 0");
   RequirePointModel(camera_side_max_angle_rad >= 0.0 && camera_side_max_angle_rad <= 0.5 * kPi,
                     "camera_side_max_angle_rad", "must be in [0, pi/2]");
   const auto footprint = footprints.FirstInvalidField();
@@ -231,6 +233,57 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
   return covariance;
 }
 
+namespace {
+
+// The round body's point with the camera's heading (LidarPointModelOptions::round_body_heading,
+// whose comment gives the model). `seen` where the camera gives no heading, the radius is
+// unknown or the lidar would stand inside the square.
+LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSidePoint& seen,
+                                     const PairedBody& body, const Vector2d& lidar_origin_m,
+                                     const LidarPointModelOptions& options) {
+  const double facing = body.facing_side_m.norm();
+  const std::optional<double> radius = RoundBodyRadius(body, options);
+  const Vector2d ray = object.point_m - lidar_origin_m;
+  const double range = ray.norm();
+  if (!options.round_body || !options.round_body_heading || !(facing > 0.0) ||
+      !(body.yaw_variance > 0.0) || !radius || !(range > 0.0) || !std::isfinite(range)) {
+    return seen;
+  }
+  const Vector2d beam = ray / range;
+  const Vector2d across(-beam.y(), beam.x());
+  const bool grid = object.cell_count > 0;
+  const double depth_r = grid ? kGridRoundBodyDepth : kSegmentationRoundBodyDepth;
+  stereo::OrientedBox square;
+  square.center_m = object.point_m + depth_r * *radius * beam;
+  square.yaw_rad = std::atan2(body.facing_side_m.y(), body.facing_side_m.x());
+  square.length_m = 2.0 * *radius;
+  square.width_m = 2.0 * *radius;
+  // The centre's covariance, the arc's own: along the ray the range noise and the radius's
+  // error (half the camera's size error, depth_r times); across it the unseen rest of the
+  // diameter, the range noise's share at the chord's two ends and their beam spacing (the
+  // segmentation's formula for ends seen free), or a cell's width for the grid's.
+  const double visible = (object.front_end_m - object.front_start_m).norm();
+  const double radius_sigma = 0.5 * depth_r * options.camera_size_sigma_m;
+  const double spacing = grid ? options.grid_cell_size_m : range * options.beam_spacing_rad;
+  const double noise = options.range_sigma_m * options.range_sigma_m;
+  const double var_along =
+      noise + radius_sigma * radius_sigma + (grid ? spacing * spacing / 12.0 : 0.0);
+  const double var_across =
+      HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
+  const Matrix2d center_covariance =
+      var_along * beam * beam.transpose() + var_across * across * across.transpose();
+  const std::optional<stereo::CartesianPoint> side =
+      stereo::ExpectedFrontPoint(square, center_covariance, body.yaw_variance, lidar_origin_m);
+  const std::optional<stereo::FrontSegment> front =
+      stereo::FrontSegmentFacing(square, lidar_origin_m);
+  if (!side || !front) return seen;
+  // The square's facing side as the front, so that its normal, a radius behind the middle,
+  // leads to the square's centre (the tracking stage's centre of a walker).
+  return LidarSidePoint{side->point_m, side->covariance, front->start_m, front->end_m};
+}
+
+}  // namespace
+
 LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body,
                                const Vector2d& lidar_origin_m,
                                const LidarPointModelOptions& options) {
@@ -248,7 +301,8 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const Matrix2d& point_
   LidarSidePoint seen{object.point_m + unmoved, point_covariance, object.front_start_m + unmoved,
                       object.front_end_m + unmoved};
   const double facing = body.facing_side_m.norm();
-  if (!options.corner_view || !(facing > 0.0) || round) return seen;
+  if (round) return TurnedSquareSidePoint(object, seen, body, lidar_origin_m, options);
+  if (!options.corner_view || !(facing > 0.0)) return seen;
   const Vector2d segment = object.front_end_m - object.front_start_m;
   const double visible = segment.norm();
   if (!(visible >= options.corner_min_segment_m) || visible <= 0.0) return seen;

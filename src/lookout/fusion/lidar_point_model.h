@@ -36,6 +36,25 @@ struct LidarPointModelOptions {
   // 6-14 times nearer its band, their fused RMSE 18-29 % lower, and the crowd's tracking
   // better (docs/fusion.md, "The round body on by default").
   bool round_body = true;
+  // The round body's square turned as the camera's box (FacingSidePoint): the truth's and the
+  // camera's point for a pedestrian is the middle of the side of its 2r square, along its
+  // heading, that faces the lidar. The camera measures the heading (the simulated one to 0.05
+  // rad); without it RoundBodyCovariance spreads the side over a quarter turn (0.13 m across
+  // the ray for r = 0.3 m, against 1.5 cm with the heading). With it the camera's square stands
+  // on the arc's centre, depth_r radii beyond the lidar's point on the ray, and the point is
+  // its facing side's middle (stereo::ExpectedFrontPoint: the heading's variance, and the other
+  // side's chance near 45 degrees), from the centre's covariance of a round body's arc: the
+  // range noise and the radius along the ray; across it the unseen rest of the diameter,
+  // uniform at either end (HiddenExtentVariance of the chord against 2r: edge returns at
+  // grazing incidence dropped or split off), and the ends' noise and beam spacing. Not the
+  // segment's own covariance: a two-return arc's direction is noise, and the hidden extents
+  // along it (up to a car's side) put the camera's depth in charge where the lidar measured
+  // it; in the crowd, a walker's camera object 1 m off so placed made a track of its own
+  // (docs/fusion.md, "A walker's square turned by the camera's heading").
+  bool round_body_heading = true;
+  // The scanner's range noise (1 sigma; the simulator's), for the round body's arc: a
+  // LidarObject carries none.
+  double range_sigma_m = 0.03;
   // The ends' resolution and the hidden extent, for the grid's objects. Off: on, right-turn-
   // cyclist's tracking IDF1 (grid objects) falls from 0.95 to 0.64 (docs/fusion.md, "The lidar
   // point's covariance").
