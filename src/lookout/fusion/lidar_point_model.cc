@@ -270,8 +270,14 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
       noise + radius_sigma * radius_sigma + (grid ? spacing * spacing / 12.0 : 0.0);
   const double var_across =
       HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
-  const Matrix2d center_covariance =
+  Matrix2d center_covariance =
       var_along * beam * beam.transpose() + var_across * across * across.transpose();
+  // A chord longer than the diameter holds another body at one end or the other (a child
+  // 6 cm from a pushchair, one segment to the scan): this body anywhere along it.
+  if (visible > 2.0 * *radius) {
+    const Vector2d u = (object.front_end_m - object.front_start_m) / visible;
+    center_covariance += HiddenExtentVariance(2.0 * *radius, visible) * u * u.transpose();
+  }
   const std::optional<stereo::CartesianPoint> side =
       stereo::ExpectedFrontPoint(square, center_covariance, body.yaw_variance, lidar_origin_m);
   const std::optional<stereo::FrontSegment> front =

@@ -46,7 +46,8 @@ struct LidarPointModelOptions {
   // side's chance near 45 degrees), from the centre's covariance of a round body's arc: the
   // range noise and the radius along the ray; across it the unseen rest of the diameter,
   // uniform at either end (HiddenExtentVariance of the chord against 2r: edge returns at
-  // grazing incidence dropped or split off), and the ends' noise and beam spacing. Not the
+  // grazing incidence dropped or split off), and the ends' noise and beam spacing; a chord
+  // longer than the diameter holds another body besides, this one anywhere along it. Not the
   // segment's own covariance: a two-return arc's direction is noise, and the hidden extents
   // along it (up to a car's side) put the camera's depth in charge where the lidar measured
   // it; in the crowd, a walker's camera object 1 m off so placed made a track of its own

@@ -455,7 +455,7 @@ TEST(LidarPointModelTest, AWalkersSquareTurnsWithTheCamerasHeading) {
 
 // The turned square's covariance: with the camera's heading to 0.05 rad and the whole chord
 // seen, centimetres across the ray where the heading unknown gives 0.13 m; a chord of half the
-// diameter adds the unseen half's (0.3 m)^2 / 12 across.
+// diameter adds the unseen half's (0.3 m)^2 / 12 across, one longer than it the surplus's.
 TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
   const double r = 0.3;
   const Vector2d lidar(0.0, 0.0);
@@ -474,6 +474,10 @@ TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
   const Matrix2d q = FacingSidePoint(half, walker, lidar, options).covariance;
   EXPECT_NEAR(q(1, 1) - p(1, 1), r * r / 12.0, 1e-9);
   EXPECT_NEAR(q(0, 0), p(0, 0), 1e-12);
+  // A chord of 0.9 m holds another body besides the 0.6 m one: (0.3 m)^2 / 12 along it.
+  const LidarObject two = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.45));
+  const Matrix2d t = FacingSidePoint(two, walker, lidar, options).covariance;
+  EXPECT_NEAR(t(1, 1) - p(1, 1), 0.3 * 0.3 / 12.0, 1e-9);
 }
 
 // The corner lies anywhere in what the scan could not see past the segment's end: 0.42 m of
