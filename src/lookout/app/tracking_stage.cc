@@ -151,6 +151,9 @@ void DetectionOptions::Validate(const std::string& source) const {
   if (!std::isfinite(centre_offset_sigma_m) || centre_offset_sigma_m < 0.0) {
     throw InputError(source, 0, "centre_offset_sigma_m", "must be >= 0");
   }
+  if (!std::isfinite(centre_offset_sigma_two_m) || centre_offset_sigma_two_m < 0.0) {
+    throw InputError(source, 0, "centre_offset_sigma_two_m", "must be >= 0");
+  }
   positive(min_segment_m, "min_segment_m");
   positive(walker_side_max_m, "walker_side_max_m");
   positive(walker_depth_sigma_m, "walker_depth_sigma_m");
@@ -286,14 +289,15 @@ std::vector<tracking::Detection> DetectionsFromFusedObjects(
     const Eigen::Vector2d normal = n > 1e-9 ? Eigen::Vector2d(away / n) : Eigen::Vector2d::Zero();
     const std::optional<bool> along = AlongMotion(o, segment, options);
     // The centre `at` behind the seen side, in the tracker's frame.
+    const double offset_sigma =
+        o.sensor_count == 2 ? options.centre_offset_sigma_two_m : options.centre_offset_sigma_m;
     const auto centre_at = [&](const CentreDepth& at) {
       const Eigen::Matrix2d in_vehicle =
           o.point_covariance + at.variance_m2 * normal * normal.transpose();
       return tracking::ClassCentre{
           frame.ego_pose * Eigen::Vector2d(o.point_m + at.depth_m * normal),
-          r * in_vehicle * r.transpose() + options.centre_offset_sigma_m *
-                                               options.centre_offset_sigma_m *
-                                               Eigen::Matrix2d::Identity()};
+          r * in_vehicle * r.transpose() +
+              offset_sigma * offset_sigma * Eigen::Matrix2d::Identity()};
     };
     const CentreDepth depth = DepthBehindSide(c, side, along, options);
     const Eigen::Vector2d centre = o.point_m + depth.depth_m * normal;  // vehicle frame

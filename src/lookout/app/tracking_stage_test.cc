@@ -115,6 +115,26 @@ TEST(DetectionsFromFusedObjectsTest, ADepthTheMotionCannotTellIsUncertain) {
               DetectionsFromFusedObjects(Frame(0, {moving}), options)[0].covariance(1, 1), 1e-12);
 }
 
+// The floor under a detection's covariance: centre_offset_sigma_two_m where both sensors saw
+// the object (its fused covariance holds its errors), centre_offset_sigma_m where one did.
+TEST(DetectionsFromFusedObjectsTest, AnObjectBothSensorsSawHasTheSmallerFloor) {
+  const DetectionOptions options;
+  ASSERT_LT(options.centre_offset_sigma_two_m, options.centre_offset_sigma_m);
+  const fusion::FusedObject both = Object(ObjectClass::kPedestrian, {10.0, 0.3}, {10.0, -0.3});
+  fusion::FusedObject camera_only = both;
+  camera_only.sensor_count = 1;
+  const auto d = DetectionsFromFusedObjects(Frame(0, {both, camera_only}), options);
+  ASSERT_EQ(d.size(), 2u);
+  // Across the side's normal the covariance is the point's and the floor alone.
+  const double two = options.centre_offset_sigma_two_m * options.centre_offset_sigma_two_m;
+  const double one = options.centre_offset_sigma_m * options.centre_offset_sigma_m;
+  EXPECT_NEAR(d[0].covariance(1, 1), 0.01 + two, 1e-12);
+  EXPECT_NEAR(d[1].covariance(1, 1), 0.01 + one, 1e-12);
+  DetectionOptions bad;
+  bad.centre_offset_sigma_two_m = -0.1;
+  EXPECT_THROW(bad.Validate(), InputError);
+}
+
 // A lidar-only object of unknown class may be a walker (centre on its side) or a car (half a
 // box behind): its centre is half the car's depth behind, with the variance of a uniform depth
 // along the side's normal, and across it the covariance it had.
@@ -207,6 +227,7 @@ TEST(DetectionsFromFusedObjectsTest, MovesIntoTheOdometryFrame) {
   o.point_covariance << 4.0, 0.0, 0.0, 1.0;
   DetectionOptions options;
   options.centre_offset_sigma_m = 0.0;
+  options.centre_offset_sigma_two_m = 0.0;
   const Pose2 ego(5.0, -3.0, kPi / 2.0);
   const auto d = DetectionsFromFusedObjects(Frame(0, {o}, ego), options);
   ASSERT_EQ(d.size(), 1u);
