@@ -62,6 +62,8 @@ void MhtOptions::Validate(const std::string& source) const {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   require(positive(cv_accel_psd), "cv_accel_psd", "must be > 0");
   require(positive(ca_jerk_psd), "ca_jerk_psd", "must be > 0");
+  require(positive(walker_ca_jerk_psd), "walker_ca_jerk_psd", "must be > 0");
+  require(walker_coast_acceleration_s >= 0.0, "walker_coast_acceleration_s", "must be >= 0");
   require(positive(turn_rate_rad_s), "turn_rate_rad_s", "must be > 0");
   require(positive(turn_accel_psd), "turn_accel_psd", "must be > 0");
   require(mode_stay_probability > 0.0 && mode_stay_probability < 1.0, "mode_stay_probability",
@@ -89,9 +91,32 @@ ImmOptions MhtImm(const MhtOptions& o) {
                       o.mode_stay_probability);
 }
 
+ImmOptions MhtWalkerImm(const MhtOptions& o) {
+  MhtOptions walker = o;
+  walker.ca_jerk_psd = o.walker_ca_jerk_psd;
+  return MhtImm(walker);
+}
+
+ImmState MhtTracker::CoastingModes(const Node& node, TimeNs stamp) const {
+  const double unseen_s = ToSeconds(stamp - node.track.last_detected);
+  if (!options_.walker_coasts_without_acceleration || !node.track.coasting ||
+      node.track.object_class != ObjectClass::kPedestrian ||
+      unseen_s <= options_.walker_coast_acceleration_s) {
+    return node.imm;
+  }
+  // FourModelImm's order: CV, CA, then the turns. Nothing has measured the acceleration for
+  // longer than walker_coast_acceleration_s: the CA mode's weight goes to CV.
+  ImmState s = node.imm;
+  if (s.probabilities.size() < 2) return s;
+  const Eigen::Vector2d cv_ca = s.probabilities.head<2>();
+  s.probabilities.head<2>() = Eigen::Vector2d(cv_ca.sum(), 0.0);
+  return s;
+}
+
 MhtTracker::MhtTracker(const MhtOptions& options) : options_(options) {
   options_.Validate();
   imm_ = MhtImm(options_);
+  walker_imm_ = MhtWalkerImm(options_);
   hypotheses_.push_back(Hypothesis{});  // no track yet, probability 1
 }
 
@@ -144,7 +169,7 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
       if (!work.index.emplace(node.get(), work.branches.size()).second) continue;
       ScanWork::Branches b;
       b.node = node.get();
-      b.predicted = PredictTo(imm_, node->imm, stamp);
+      b.predicted = PredictTo(ImmFor(node->track.object_class), CoastingModes(*node, stamp), stamp);
       const ImmMeasurementPrediction p = PredictMeasurement(b.predicted, Eigen::Matrix2d::Zero());
       // PD as the view has it at the predicted position (combined over the modes).
       b.view = view.View(p.combined.z, node->track.object_class);
@@ -239,7 +264,7 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
   // 4. The kept children's track hypotheses, made once each.
   const auto finish = [&](Node& node, const Track& before) {
     node.track.stamp = stamp;
-    node.track.state = Combine(imm_, node.imm);
+    node.track.state = Combine(ImmFor(node.track.object_class), node.imm);
     node.track.mode_probabilities = node.imm.probabilities;
     node.track.previous = TrackSnapshot{before.stamp, before.state};
   };
@@ -256,16 +281,19 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
         auto node = std::make_shared<Node>();
         node->tree = b.node->tree;
         const ClassCentre z = MeasurementFor(d, b.node->track.object_class);
-        node->imm = Update(imm_, b.predicted, z.position_m, z.covariance).state;
+        node->imm =
+            Update(ImmFor(b.node->track.object_class), b.predicted, z.position_m, z.covariance)
+                .state;
         if (track.updates == 3) {
           // The third detection: the seen points' velocity, where surer (tracker.h).
-          const Gaussian combined = Combine(imm_, node->imm);
+          const Gaussian combined = Combine(ImmFor(b.node->track.object_class), node->imm);
           const Gaussian seen =
               WithSeenVelocity(combined, track.early_seen_points,
                                options_.management.seen_velocity_agreement_probability);
           if (seen.mean != combined.mean || seen.cov != combined.cov) {
             const double sa = options_.initial_acceleration_sigma_mps2;
-            node->imm = InitImm(imm_, seen, {kX, kY, kVx, kVy}, sa * sa, stamp);
+            node->imm = InitImm(ImmFor(b.node->track.object_class), seen, {kX, kY, kVx, kVy},
+                                sa * sa, stamp);
           }
         }
         node->track = std::move(track);
@@ -300,8 +328,8 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
       const Gaussian prior = BirthState(d, InitialSpeedSigma(options_.management, d.object_class,
                                                              options_.initial_speed_sigma_mps));
       const double sa = options_.initial_acceleration_sigma_mps2;
-      node->imm = InitImm(imm_, prior, {kX, kY, kVx, kVy}, sa * sa, stamp);
-      node->track.state = Combine(imm_, node->imm);
+      node->imm = InitImm(ImmFor(d.object_class), prior, {kX, kY, kVx, kVy}, sa * sa, stamp);
+      node->track.state = Combine(ImmFor(d.object_class), node->imm);
       node->track.mode_probabilities = node->imm.probabilities;
       slot = std::move(node);
     }
