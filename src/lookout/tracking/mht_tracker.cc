@@ -100,8 +100,7 @@ ImmOptions MhtWalkerImm(const MhtOptions& o) {
 ImmState MhtTracker::CoastingModes(const Node& node, TimeNs stamp) const {
   const double unseen_s = ToSeconds(stamp - node.track.last_detected);
   if (!options_.walker_coasts_without_acceleration || !node.track.coasting ||
-      node.track.object_class != ObjectClass::kPedestrian ||
-      unseen_s <= options_.walker_coast_acceleration_s) {
+      !IsVulnerable(node.track.object_class) || unseen_s <= options_.walker_coast_acceleration_s) {
     return node.imm;
   }
   // FourModelImm's order: CV, CA, then the turns. Nothing has measured the acceleration for

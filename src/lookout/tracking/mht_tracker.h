@@ -56,16 +56,17 @@ struct MhtOptions {
   // The IMM of every track (docs/imm.md): fixed-rate left and right turns at +-turn_rate_rad_s.
   double cv_accel_psd = 0.3;             // m^2/s^3
   double ca_jerk_psd = 0.1;              // m^2/s^5
-  // The CA model's jerk for pedestrian tracks: a walker starts and stops within a few tenths
-  // of a second (child-behind-parked-car's child, 0 -> 2.5 m/s in 0.2 s and to a stop), a car
-  // or a cyclist over seconds. 5 m^2/s^5 lets the acceleration's sigma grow 2.2 m/s^2 in a
-  // second, a walker's start; the vehicles' 0.1, 0.3 m/s^2. Measured at 0.5 / 1 / 2 / 5 / 10
-  // (docs/tracking-metrics.md, "A walker's start and stop"): the child's and the hidden
-  // walker's tracks better at each step, the child's below the GNN's from 5.
+  // The CA model's jerk for pedestrian and cyclist tracks (IsVulnerable): a walker starts and
+  // stops within a few tenths of a second (child-behind-parked-car's child, 0 -> 2.5 m/s in
+  // 0.2 s and to a stop), a cyclist pulls out from rest within a second (cyclist-crossing), a
+  // car changes its acceleration over seconds. 5 m^2/s^5 lets the acceleration's sigma grow 2.2
+  // m/s^2 in a second; the vehicles' 0.1, 0.3 m/s^2. Measured at 0.5 / 1 / 2 / 5 / 10 for walkers
+  // (docs/tracking-metrics.md, "A walker's start and stop"): the child's and the hidden walker's
+  // tracks better at each step, the child's below the GNN's from 5; and for cyclists at 5.
   double walker_ca_jerk_psd = 5.0;  // m^2/s^5
-  // A pedestrian track unseen for longer than walker_coast_acceleration_s is predicted with the
-  // CA mode's weight given to CV: with the walkers' jerk its acceleration's sigma grows 2 m/s^2
-  // a second unmeasured, and a hidden walker's coasting prediction widened until a clutter
+  // A pedestrian or cyclist track unseen for longer than walker_coast_acceleration_s is predicted
+  // with the CA mode's weight given to CV: with the walkers' jerk its acceleration's sigma grows 2
+  // m/s^2 a second unmeasured, and a hidden walker's coasting prediction widened until a clutter
   // detection 3 m off took it
   // (MhtTrackerTest.AHiddenTrackCoastsThroughTheShadowAndIsNotDraggedOff); a hidden walker walks
   // on. Not from its first miss: one to three scans missed in the open need the CA mode's wider
@@ -107,6 +108,10 @@ ImmOptions MhtImm(const MhtOptions& options);
 // The same for pedestrian tracks: the CA model's jerk walker_ca_jerk_psd. The same models (a
 // track whose class becomes known changes options, not state).
 ImmOptions MhtWalkerImm(const MhtOptions& options);
+// Walkers and cyclists: the road users who start and stop within a second (walker_ca_jerk_psd).
+inline bool IsVulnerable(ObjectClass c) {
+  return c == ObjectClass::kPedestrian || c == ObjectClass::kCyclist;
+}
 
 class MhtTracker final : public Tracker {
  public:
@@ -152,9 +157,7 @@ class MhtTracker final : public Tracker {
   // The IMM state a track is predicted from (walker_coasts_without_acceleration).
   ImmState CoastingModes(const Node& node, TimeNs stamp) const;
   // The IMM of a track of class `c`.
-  const ImmOptions& ImmFor(ObjectClass c) const {
-    return c == ObjectClass::kPedestrian ? walker_imm_ : imm_;
-  }
+  const ImmOptions& ImmFor(ObjectClass c) const { return IsVulnerable(c) ? walker_imm_ : imm_; }
   std::vector<Hypothesis> hypotheses_;  // best first
   std::map<std::uint64_t, std::uint32_t> id_of_tree_;
   std::vector<Track> confirmed_;

@@ -384,13 +384,14 @@ TEST(MhtTrackerTest, AWalkersTrackFollowsItsStartAndStop) {
     const double moving = std::clamp(t - 1.0, 0.0, 1.2);
     return Eigen::Vector2d(10.0 + 2.5 * moving, 3.0);
   };
-  const auto mean_error_after_changes = [&](const MhtOptions& options) {
+  const auto mean_error_after_changes = [&](const MhtOptions& options,
+                                            ObjectClass c = ObjectClass::kPedestrian) {
     MhtTracker mht(options);
     Rng rng(41);
     double sum = 0.0;
     int n = 0;
     for (int k = 0; k < 45; ++k) {
-      mht.Step(k * kStep, {At(walker_at(k) + Noise(rng, 0.05), ObjectClass::kPedestrian, 2, 0.15)});
+      mht.Step(k * kStep, {At(walker_at(k) + Noise(rng, 0.05), c, 2, 0.15)});
       const double t = k * kDt;
       const bool after_change = (t > 1.0 && t <= 2.0) || (t > 2.2 && t <= 3.2);
       const std::vector<Track> tracks = mht.ConfirmedTracks();
@@ -410,6 +411,12 @@ TEST(MhtTrackerTest, AWalkersTrackFollowsItsStartAndStop) {
   std::printf("mean error after the start and the stop: %.3f m (vehicles' jerk: %.3f m)\n", with,
               without);
   EXPECT_LT(with, 0.9 * without) << "seed 41";
+  // A cyclist pulling out and stopping takes the same IMM; a car does not.
+  EXPECT_LT(mean_error_after_changes(walker, ObjectClass::kCyclist),
+            0.9 * mean_error_after_changes(as_vehicle, ObjectClass::kCyclist))
+      << "seed 41";
+  EXPECT_DOUBLE_EQ(mean_error_after_changes(walker, ObjectClass::kCar),
+                   mean_error_after_changes(as_vehicle, ObjectClass::kCar));
 }
 
 // Both trackers start a camera object's track with the camera's velocity (BirthState): a car
