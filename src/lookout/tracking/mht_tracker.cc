@@ -63,7 +63,8 @@ void MhtOptions::Validate(const std::string& source) const {
   require(positive(cv_accel_psd), "cv_accel_psd", "must be > 0");
   require(positive(ca_jerk_psd), "ca_jerk_psd", "must be > 0");
   require(positive(walker_ca_jerk_psd), "walker_ca_jerk_psd", "must be > 0");
-  require(walker_coast_acceleration_s >= 0.0, "walker_coast_acceleration_s", "must be >= 0");
+  require(walker_coast_acceleration_s >= 0.0, "walker_coast_acceleration_s",
+          "must be >= 0 (infinity: never)");
   require(positive(turn_rate_rad_s), "turn_rate_rad_s", "must be > 0");
   require(positive(turn_accel_psd), "turn_accel_psd", "must be > 0");
   require(mode_stay_probability > 0.0 && mode_stay_probability < 1.0, "mode_stay_probability",
@@ -99,8 +100,8 @@ ImmOptions MhtWalkerImm(const MhtOptions& o) {
 
 ImmState MhtTracker::CoastingModes(const Node& node, TimeNs stamp) const {
   const double unseen_s = ToSeconds(stamp - node.track.last_detected);
-  if (!options_.walker_coasts_without_acceleration || !node.track.coasting ||
-      !IsVulnerable(node.track.object_class) || unseen_s <= options_.walker_coast_acceleration_s) {
+  if (!node.track.coasting || !IsVulnerable(node.track.object_class) ||
+      unseen_s <= options_.walker_coast_acceleration_s) {
     return node.imm;
   }
   // FourModelImm's order: CV, CA, then the turns. Nothing has measured the acceleration for

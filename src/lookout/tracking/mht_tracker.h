@@ -72,8 +72,7 @@ struct MhtOptions {
   // on. Not from its first miss: one to three scans missed in the open need the CA mode's wider
   // gate to take the walker back after a lagging update (from the first miss,
   // MhtTrackerTest.IdsStayWhenTheBestHypothesisChanges lost a walker to a second track after three
-  // misses). 0.5 s; 0.3 and 1.0 pass the same tests.
-  bool walker_coasts_without_acceleration = true;
+  // misses). 0.5 s; 0.3 and 1.0 pass the same tests. Infinity: never.
   double walker_coast_acceleration_s = 0.5;
   double turn_rate_rad_s = 0.3;
   double turn_accel_psd = 0.3;           // m^2/s^3
@@ -105,8 +104,9 @@ struct MhtOptions {
 
 // The four-model IMM the tracks carry.
 ImmOptions MhtImm(const MhtOptions& options);
-// The same for pedestrian tracks: the CA model's jerk walker_ca_jerk_psd. The same models (a
-// track whose class becomes known changes options, not state).
+// The same for pedestrian and cyclist tracks (IsVulnerable): the CA model's jerk
+// walker_ca_jerk_psd. The same models (a track whose class becomes known changes options, not
+// state).
 ImmOptions MhtWalkerImm(const MhtOptions& options);
 // Walkers and cyclists: the road users who start and stop within a second (walker_ca_jerk_psd).
 inline bool IsVulnerable(ObjectClass c) {
@@ -154,7 +154,7 @@ class MhtTracker final : public Tracker {
   MhtOptions options_;
   ImmOptions imm_;
   ImmOptions walker_imm_;
-  // The IMM state a track is predicted from (walker_coasts_without_acceleration).
+  // The IMM state a track is predicted from (walker_coast_acceleration_s).
   ImmState CoastingModes(const Node& node, TimeNs stamp) const;
   // The IMM of a track of class `c`.
   const ImmOptions& ImmFor(ObjectClass c) const { return IsVulnerable(c) ? walker_imm_ : imm_; }
