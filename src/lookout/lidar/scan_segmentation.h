@@ -13,7 +13,9 @@
 // dphi the angle between the two beams: the distance two returns of one surface can be apart
 // when the surface is seen at grazing incidence lambda, plus the range noise. It grows with
 // range as beams spread. Up to max_gap_beams missing returns (dropouts, NaN) may lie between
-// two points of one cluster; dphi then spans the gap.
+// two points of one cluster; dphi then spans the gap. Beyond the paper: a step within D_max
+// with twice its noise term is the noise's where the cluster's line and the returns' after it
+// agree (SegmentationOptions::join_noise_breaks).
 //
 // Per cluster (a LidarObject, vehicle frame):
 //   front segment  the total-least-squares line of the points, split once at the point
@@ -63,6 +65,13 @@ struct SegmentationOptions {
   // (docs/fusion.md). Within one body neighbouring returns lie closer (a walker's arc: a few
   // centimetres at that range). 0: off.
   double class_break_m = 0.3;
+  // A break the noise could have made (beyond Borges and Aldon's distance, within it with
+  // twice its noise term) parts nothing where the cluster's line and the returns' after it
+  // predict each other within breakpoint_noise_sigmas of the noise: a side seen from a few
+  // decimetres, its returns a millimetre apart, otherwise comes apart wherever two neighbours'
+  // range noise differs by more than the noise term (scan_segmentation.cc,
+  // OneSurfaceAcrossTheBreak; docs/lidar-chain.md).
+  bool join_noise_breaks = true;
   // Missing returns (no return, NaN) bridged inside one cluster.
   int max_gap_beams = 2;
   // Clusters with fewer returns are dropped (a lone return is noise as often as an object).
