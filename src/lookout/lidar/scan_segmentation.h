@@ -77,7 +77,9 @@ struct SegmentationOptions {
   // Clusters with fewer returns are dropped (a lone return is noise as often as an object).
   int min_points = 2;
   // A cluster is split into two sides when a point lies further than this from the line of
-  // all its points and further than breakpoint_noise_sigmas range sigmas.
+  // all its points and further than breakpoint_noise_sigmas range sigmas, as rare from the
+  // noise of all its n returns as that many sigmas is of one (n P(|z| > d / sigma_r) at most
+  // P(|z| > k): 4.6 sigmas for 600 returns).
   double corner_split_m = 0.1;
   // ... and when one of the two sides is at least this long. A round body (a pedestrian, a
   // pole) shows an arc that bends by its radius, whose halves are chords under r sqrt 2

@@ -394,6 +394,25 @@ TEST(ScanSegmentation, TheRangeNoiseOfASideSeenUpCloseDoesNotPartIt) {
   EXPECT_EQ(bridged[0].beams.size(), outlier.ranges_m.size());
 }
 
+// The same side as one object: its front is the whole side, not an L split at a return the
+// noise put 10 cm off the line (3.3 sigmas: one of 600 returns in most scans).
+TEST(ScanSegmentation, TheNoiseOfManyReturnsMakesNoCorner) {
+  const double seen = 2.0 * 0.3 * std::tan(60.0 * kDeg);
+  const SegmentationOptions o = KeepAll();
+  int whole = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const LidarObjectFrame f =
+        SegmentScan(NoisyWallScan(0.3, 60.0, 0.03, seed), {}, Pose2(), o, 0.1);
+    if (f.objects.size() != 1) continue;  // the join's own tail (above)
+    ++whole;
+    const LidarObject& side = f.objects[0];
+    EXPECT_GT((side.front_end_m - side.front_start_m).norm(), 0.95 * seen) << "seed " << seed;
+    EXPECT_NEAR(side.point_m.x(), 0.3, 0.01) << "seed " << seed;
+    EXPECT_NEAR(side.point_m.y(), 0.0, 0.05) << "seed " << seed;
+  }
+  EXPECT_GE(whole, 16);
+}
+
 // Two walls 0.25 m apart in depth at 3 m (beyond Borges and Aldon's 0.17 m there, within
 // twice its noise term: a soft break), with the scanner's noise: the test of each side's line
 // against the other's returns keeps them two, 25 cm being eight sigmas of a ten-return mean's
