@@ -51,7 +51,11 @@ struct LidarPointModelOptions {
   // segment's own covariance: a two-return arc's direction is noise, and the hidden extents
   // along it (up to a car's side) put the camera's depth in charge where the lidar measured
   // it; in the crowd, a walker's camera object 1 m off so placed made a track of its own
-  // (docs/fusion.md, "A walker's square turned by the camera's heading").
+  // (docs/fusion.md, "A walker's square turned by the camera's heading"). A piece of the arc
+  // the scan places at the circle's edge (one end in a nearer body's shadow, the other seen
+  // free: the silhouette) has the centre where the circle puts it behind that piece
+  // (ArcPieceCentre), across and in depth, not a radius behind its middle (docs/fusion.md, "A
+  // walker's edge").
   bool round_body_heading = true;
   // The scanner's range noise (1 sigma; the simulator's), for the round body's arc: a
   // LidarObject carries none.
@@ -140,6 +144,22 @@ double BoxHiddenExtentVariance(double visible_m, double length_m, double width_m
 inline constexpr double kSegmentationRoundBodyDepth = 1.0;
 inline constexpr double kGridRoundBodyDepth = 0.25 * kPi;
 Eigen::Matrix2d RoundBodyCovariance(double radius_m, const Eigen::Vector2d& ray, double depth_r);
+
+// The centre of a circle of radius `radius_m` seen as a piece of its near arc `chord_m` wide
+// across the ray, `returns` returns evenly spaced over it, the piece's start anywhere in
+// [start_min_m, start_max_m] (offsets from the centre across the ray, within [-r, r - chord]),
+// uniformly: in (along the ray, across it) axes from the returns' mean (their mean depth, their
+// chord's middle), the centre's mean offset and covariance; and how the side's middle facing
+// the lidar (a radius nearer than the centre) moves behind the returns per metre of error in
+// the radius, the chord as seen. A whole arc densely sampled: (pi / 4) r deep, across 0; an
+// edge piece: shallower (0.15 m for 0.1 m of a 0.3 m circle), r - c / 2 across.
+struct ArcCentre {
+  Eigen::Vector2d mean_m = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  double side_radius_slope = 0.0;
+};
+ArcCentre ArcPieceCentre(double radius_m, double chord_m, int returns, double start_min_m,
+                         double start_max_m);
 
 // What the camera says of the body a lidar object was paired with: its class and its box's
 // sides (0 when there is no box).
