@@ -423,7 +423,7 @@ std::vector<ScanCluster> ClusterScan(const LidarScan& scan, std::span<const HitC
     }
     const double r = static_cast<double>(scan.ranges_m[i]);
     const double a = scan.BeamAngle(i);
-    const Vector2d p(r * std::cos(a), r * std::sin(a));
+    const Vector2d p(r * std::cos(a), r * std::sin(a));  // sensor frame
     Break kind = Break::kHard;
     if (!beams.empty()) {
       const std::size_t last = beams.back();
