@@ -237,17 +237,35 @@ ArcCentre ArcPieceCentre(double radius_m, double chord_m, int returns, double st
                          double start_max_m) {
   const double r = radius_m;
   const int n = std::max(1, returns);
+  // The near half-circle's depth in front of the centre, integrated across:
+  // int sqrt(r^2 - y^2) dy = (y sqrt(r^2 - y^2) + r^2 asin(y / r)) / 2.
+  const auto integral = [](double rr, double y) {
+    const double t = std::clamp(y / rr, -1.0, 1.0);
+    return 0.5 * rr * rr * (t * std::sqrt(std::max(0.0, 1.0 - t * t)) + std::asin(t));
+  };
   // The returns' mean depth in front of the centre for a piece starting at a (its n returns
-  // evenly spaced over the chord: the beams sample the arc evenly across the ray, and a few
-  // returns near the silhouette are not their continuous mean), and the centre's offset across
-  // from the piece's middle.
+  // evenly spaced over the chord, the first and the last at its ends: the beams sample the arc
+  // evenly across the ray, and a few returns near the silhouette are not their continuous
+  // mean), and the centre's offset across from the piece's middle. Beyond kDenseReturns the
+  // sum by the trapezoid rule, (n - 1) / n of the integral's mean and the ends' halves, within
+  // a millimetre of it (LidarPointModelTest.ArcPieceCentreIsWhereTheCircleIs), without a
+  // square root per return.
+  constexpr int kDenseReturns = 32;
+  const auto depth_at = [](double rr, double y) {
+    return std::sqrt(std::max(0.0, rr * rr - y * y));
+  };
   const auto at = [&](double rr, double a) {
     double depth = 0.0;
-    for (int k = 0; k < n; ++k) {
-      const double y = n > 1 ? a + chord_m * k / (n - 1) : a + 0.5 * chord_m;
-      depth += std::sqrt(std::max(0.0, rr * rr - y * y));
+    if (n > kDenseReturns && chord_m > 0.0) {
+      const double mean = (integral(rr, a + chord_m) - integral(rr, a)) / chord_m;
+      depth = (n - 1.0) / n * mean + (depth_at(rr, a) + depth_at(rr, a + chord_m)) / (2.0 * n);
+    } else {
+      for (int k = 0; k < n; ++k) {
+        depth += depth_at(rr, n > 1 ? a + chord_m * k / (n - 1) : a + 0.5 * chord_m);
+      }
+      depth /= n;
     }
-    return Vector2d(depth / n, -(a + 0.5 * chord_m));
+    return Vector2d(depth, -(a + 0.5 * chord_m));
   };
   constexpr int kSteps = 16;
   const auto moments = [&](double rr, double lo, double hi, Matrix2d* covariance) {
