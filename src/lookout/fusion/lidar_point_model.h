@@ -148,8 +148,9 @@ Eigen::Matrix2d RoundBodyCovariance(double radius_m, const Eigen::Vector2d& ray,
 // The centre of a circle of radius `radius_m` seen as a piece of its near arc `chord_m` wide
 // across the ray, `returns` returns evenly spaced over it, the piece's start anywhere in
 // [start_min_m, start_max_m] (offsets from the centre across the ray, within [-r, r - chord]),
-// uniformly: in (along the ray, across it) axes from the returns' mean (their mean depth, their
-// chord's middle), the centre's mean offset and covariance; and how the side's middle facing
+// uniformly: the centre's mean offset from the returns' mean (their mean depth, their chord's
+// middle) and its covariance, in (along the ray away from the lidar, across it) axes, the across
+// axis the ray turned a quarter left; and how the side's middle facing
 // the lidar (a radius nearer than the centre) moves behind the returns per metre of error in
 // the radius, the chord as seen. A whole arc densely sampled: (pi / 4) r deep, across 0; an
 // edge piece: shallower (0.15 m for 0.1 m of a 0.3 m circle), r - c / 2 across.
