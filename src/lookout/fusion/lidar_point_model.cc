@@ -305,9 +305,9 @@ struct ArcPiece {
   double chord_m = 0.0;
   double start_min_m = 0.0, start_max_m = 0.0;  // ArcPieceCentre's
 };
-std::optional<ArcPiece> EdgePiece(const LidarObject& object, const Vector2d& beam, double radius_m,
-                                  double spacing_m) {
-  const Vector2d across(-beam.y(), beam.x());
+// `across`: the ray to the object turned a quarter left, unit.
+std::optional<ArcPiece> EdgePiece(const LidarObject& object, const Vector2d& across,
+                                  double radius_m, double spacing_m) {
   const double chord = std::clamp(std::abs((object.front_end_m - object.front_start_m).dot(across)),
                                   0.0, 2.0 * radius_m);
   const double missing = 2.0 * radius_m - chord;
@@ -343,47 +343,50 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   const bool grid = object.cell_count > 0;
   const double depth_r = grid ? kGridRoundBodyDepth : kSegmentationRoundBodyDepth;
   stereo::OrientedBox square;
-  square.center_m = object.point_m + depth_r * *radius * beam;
   square.yaw_rad = std::atan2(body.facing_side_m.y(), body.facing_side_m.x());
   square.length_m = 2.0 * *radius;
   square.width_m = 2.0 * *radius;
-  // The centre's covariance, the arc's own: along the ray the range noise and the radius's
-  // error (half the camera's size error, depth_r times); across it the unseen rest of the
-  // diameter, the range noise's share at the chord's two ends and their beam spacing (the
-  // segmentation's formula for ends seen free), or a cell's width for the grid's.
   const double visible = (object.front_end_m - object.front_start_m).norm();
-  const double radius_sigma = 0.5 * depth_r * options.camera_size_sigma_m;
   const double spacing = grid ? options.grid_cell_size_m : range * options.beam_spacing_rad;
   const double noise = options.range_sigma_m * options.range_sigma_m;
-  const double var_along =
-      noise + radius_sigma * radius_sigma + (grid ? spacing * spacing / 12.0 : 0.0);
-  const double var_across =
-      HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
-  Matrix2d center_covariance =
-      var_along * beam * beam.transpose() + var_across * across * across.transpose();
+  Matrix2d center_covariance;
   // A piece the scan places at the circle's edge (EdgePiece): the centre behind it as the
   // circle puts it (ArcPieceCentre), not a radius behind its middle. Its spread along the ray:
   // the range noise on the mean of its n returns, the depth's over where the edge lies, and the
   // radius's error as the side's middle feels it. Before, the crowd's pieces of two to four
   // returns, mostly such edges, were 0.14 m off across the ray against 0.10 m of sigma, and
   // 9 cm too deep (docs/fusion.md, "A walker's edge").
-  if (!grid) {
-    if (const std::optional<ArcPiece> piece = EdgePiece(object, beam, *radius, spacing)) {
-      const int count = static_cast<int>(object.point_count);
-      const ArcCentre centre =
-          ArcPieceCentre(*radius, piece->chord_m, count, piece->start_min_m, piece->start_max_m);
-      const double returns = std::max(1, count);
-      const double side_radius_sigma = centre.side_radius_slope * 0.5 * options.camera_size_sigma_m;
-      square.center_m = object.point_m - object.round_body_shift_m + centre.mean_m.x() * beam +
-                        centre.mean_m.y() * across;
-      Matrix2d own = centre.covariance;
-      own(0, 0) += noise / returns + side_radius_sigma * side_radius_sigma;
-      own(1, 1) += 0.5 * noise;
-      Matrix2d axes;
-      axes.col(0) = beam;
-      axes.col(1) = across;
-      center_covariance = axes * own * axes.transpose();
-    }
+  const std::optional<ArcPiece> piece =
+      grid ? std::nullopt : EdgePiece(object, across, *radius, spacing);
+  if (piece) {
+    const int count = static_cast<int>(object.point_count);
+    const ArcCentre centre =
+        ArcPieceCentre(*radius, piece->chord_m, count, piece->start_min_m, piece->start_max_m);
+    const double returns = std::max(1, count);
+    const double side_radius_sigma = centre.side_radius_slope * 0.5 * options.camera_size_sigma_m;
+    square.center_m = object.point_m - object.round_body_shift_m + centre.mean_m.x() * beam +
+                      centre.mean_m.y() * across;
+    Matrix2d own = centre.covariance;
+    own(0, 0) += noise / returns + side_radius_sigma * side_radius_sigma;
+    own(1, 1) += 0.5 * noise;
+    Matrix2d axes;
+    axes.col(0) = beam;
+    axes.col(1) = across;
+    center_covariance = axes * own * axes.transpose();
+  } else {
+    // The centre depth_r radii behind the point; its covariance, the arc's own: along the ray
+    // the range noise and the radius's error (half the camera's size error, depth_r times);
+    // across it the unseen rest of the diameter, the range noise's share at the chord's two
+    // ends and their beam spacing (the segmentation's formula for ends seen free), or a cell's
+    // width for the grid's.
+    square.center_m = object.point_m + depth_r * *radius * beam;
+    const double radius_sigma = 0.5 * depth_r * options.camera_size_sigma_m;
+    const double var_along =
+        noise + radius_sigma * radius_sigma + (grid ? spacing * spacing / 12.0 : 0.0);
+    const double var_across =
+        HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
+    center_covariance =
+        var_along * beam * beam.transpose() + var_across * across * across.transpose();
   }
   // A chord longer than the diameter holds another body at one end or the other (a child
   // 6 cm from a pushchair, one segment to the scan): this body anywhere along it.

@@ -281,19 +281,18 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
         auto node = std::make_shared<Node>();
         node->tree = b.node->tree;
         const ClassCentre z = MeasurementFor(d, b.node->track.object_class);
-        node->imm =
-            Update(ImmFor(b.node->track.object_class), b.predicted, z.position_m, z.covariance)
-                .state;
+        // The IMM the branch was predicted with (its parent's class).
+        const ImmOptions& imm = ImmFor(b.node->track.object_class);
+        node->imm = Update(imm, b.predicted, z.position_m, z.covariance).state;
         if (track.updates == 3) {
           // The third detection: the seen points' velocity, where surer (tracker.h).
-          const Gaussian combined = Combine(ImmFor(b.node->track.object_class), node->imm);
+          const Gaussian combined = Combine(imm, node->imm);
           const Gaussian seen =
               WithSeenVelocity(combined, track.early_seen_points,
                                options_.management.seen_velocity_agreement_probability);
           if (seen.mean != combined.mean || seen.cov != combined.cov) {
             const double sa = options_.initial_acceleration_sigma_mps2;
-            node->imm = InitImm(ImmFor(b.node->track.object_class), seen, {kX, kY, kVx, kVy},
-                                sa * sa, stamp);
+            node->imm = InitImm(imm, seen, {kX, kY, kVx, kVy}, sa * sa, stamp);
           }
         }
         node->track = std::move(track);
