@@ -64,6 +64,15 @@ GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
   return c;
 }
 
+// A hit the stage explains as a moving body's arrival: at least the occupancy the hit gives to
+// unknown space (its measurement), and seen (ClusterMotionOptions::births).
+void BearHit(std::size_t s, const MeasurementGrid& z, std::span<float> occupancy,
+             std::span<float> seen) {
+  if (occupancy[s] >= z.p_occupied[s]) return;
+  occupancy[s] = z.p_occupied[s];
+  seen[s] = 1.0f;
+}
+
 // What a cell is to this cycle's stage: held by a dynamic cluster, attached to one as a hit
 // arriving, or taken into a still body already.
 enum CellRole : std::uint8_t { kFree = 0, kMember, kAttached, kInStillBody };
@@ -120,18 +129,30 @@ std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
   return static_cast<double>(vacated) / left;
 }
 
+// The share of `body`'s hits on cells the grid believed free (O < 1/2).
+double ArrivedShare(const ScrollingGridGeometry& g, const HitBody& body,
+                    std::span<const float> occupancy) {
+  int arrived = 0;
+  for (const CellIndex& c : body.cells) {
+    if (occupancy[g.StorageIndexOfLocal(c)] < 0.5f) ++arrived;
+  }
+  return static_cast<double>(arrived) / static_cast<double>(body.cells.size());
+}
+
 // The still bodies of ClusterMotionOptions::still_bodies, among the cells `role` leaves free.
 void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, const ScanFlow& flow,
                      std::vector<std::uint8_t>& role, double dt_s, double known_confidence,
-                     const ClusterMotionOptions& options, std::span<const float> occupancy,
-                     std::span<float> vx, std::span<float> vy, std::span<float> confidence) {
+                     const ClusterMotionOptions& options, std::span<float> occupancy,
+                     std::span<float> seen, std::span<float> vx, std::span<float> vy,
+                     std::span<float> confidence) {
   const HitMaps* older = flow.long_pair();
   if (older == nullptr) return;
   const int search_half = 2 * options.search_half_cells;
   const double per_cycle = flow.long_lag_scale();
   const double cells_per_mps = dt_s / g.cell_size_m();
   const auto member = [&](std::size_t s) {
-    return z.p_occupied[s] > 0.5f && static_cast<double>(occupancy[s]) > options.min_occupancy;
+    return z.p_occupied[s] > 0.5f &&
+           (options.births || static_cast<double>(occupancy[s]) > options.min_occupancy);
   };
   const auto speed = [&](const CellIndex& c) {
     const std::size_t s = g.StorageIndexOfLocal(c);
@@ -153,7 +174,10 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
       continue;
     }
     const std::optional<double> vacated = VacatedShare(*older, body, m);
-    if (!vacated || *vacated < options.still_min_vacated_share) continue;
+    if ((!vacated || *vacated < options.still_min_vacated_share) &&
+        !(options.births && ArrivedShare(g, body, occupancy) >= options.still_min_arrived_share)) {
+      continue;
+    }
     // The last cycle agrees: the hits moved back by one cycle's share land on its scan's.
     const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
     const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
@@ -173,6 +197,7 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
       vx[s] = static_cast<float>(body_vx);
       vy[s] = static_cast<float>(body_vy);
       confidence[s] = static_cast<float>(known_confidence);
+      if (options.births) BearHit(s, z, occupancy, seen);
     }
   }
 }
@@ -185,6 +210,8 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              "search_half_cells", "must be in [0, 16]");
   RequireClusterMotionOption(attach_cells >= 0 && attach_cells <= 8, source, "attach_cells",
                              "must be in [0, 8]");
+  RequireClusterMotionOption(std::isfinite(birth_min_cells) && birth_min_cells >= 0.0, source,
+                             "birth_min_cells", "must be finite and >= 0");
   RequireClusterMotionOption(min_hits >= 1, source, "min_hits", "must be >= 1");
   RequireClusterMotionOption(WithinUnit(min_matched_share), source, "min_matched_share",
                              "must be in [0, 1]");
@@ -201,6 +228,8 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              "must be in [0, 1]");
   RequireClusterMotionOption(std::isfinite(still_believed_share) && still_believed_share >= 0.0,
                              source, "still_believed_share", "must be finite and >= 0");
+  RequireClusterMotionOption(WithinUnit(still_min_arrived_share), source, "still_min_arrived_share",
+                             "must be in [0, 1]");
   ClusterOptions(*this).Validate(source);
 }
 
@@ -269,6 +298,7 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
   const std::span<float> vx = layers.Values(ids.velocity_x_mps);
   const std::span<float> vy = layers.Values(ids.velocity_y_mps);
   const std::span<float> confidence = layers.Values(ids.velocity_confidence);
+  const std::span<float> seen = layers.Values(ids.seen);
   const double cells_per_mps = dt_s / g.cell_size_m();
   const auto local_of = [&](std::size_t storage) {
     return g.LocalFromGlobal(g.GlobalFromStorage(storage));
@@ -330,6 +360,8 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
     const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
     const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
     const bool moved = std::hypot(m.dx_cells, m.dy_cells) >= 1.0;
+    const bool born =
+        options.births && std::hypot(m.dx_cells, m.dy_cells) * per_cycle >= options.birth_min_cells;
     const double b = options.blend;
     for (const std::size_t cell : cluster.cells) {
       if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell))) continue;  // staying fits
@@ -337,6 +369,7 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
       vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
     }
     for (const std::size_t cell : attached) {
+      if (born) BearHit(cell, z, occupancy, seen);
       if (static_cast<double>(confidence[cell]) >= known_confidence) continue;
       vx[cell] = static_cast<float>(body_vx);
       vy[cell] = static_cast<float>(body_vy);
@@ -344,7 +377,7 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
     }
   }
   if (options.still_bodies) {
-    MoveStillBodies(g, z, flow, role, dt_s, known_confidence, options, occupancy, vx, vy,
+    MoveStillBodies(g, z, flow, role, dt_s, known_confidence, options, occupancy, seen, vx, vy,
                     confidence);
   }
 }

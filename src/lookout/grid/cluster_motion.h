@@ -36,7 +36,8 @@
 //     (staying explains it as well: a wall cell that rigidity links joined to a walker); each
 //     attached hit with no trusted velocity of its own (confidence under the filter's
 //     known_confidence) takes v_body and that confidence, so the next cycle moves it with the
-//     body;
+//     body; and, when the body moved at least birth_min_cells a cycle, the occupancy of a hit on
+//     unknown space (ClusterMotionOptions::births);
 //   - then the still bodies (ClusterMotionOptions::still_bodies), which no cluster holds.
 //
 // Deterministic: clusters in window order, one thread.
@@ -64,8 +65,23 @@ struct ClusterMotionOptions {
   // twice this).
   int search_half_cells = 3;
   // Hits this close to a cluster cell (Chebyshev, cells) join its body: a car's front face seen
-  // for the first time lies a few cells ahead of the cells it already moved.
-  int attach_cells = 3;
+  // for the first time lies a few cells ahead of the cells it already moved. 8 (1.2 m) since
+  // the births below: a 3 m/s car's face runs 4-5 cells ahead of the side cells the grid holds
+  // (3 let the face go unseen; 10 joins the crowd's walkers to each other's bodies: the crowd's
+  // velocity RMSE 0.33 -> 0.54 m/s, docs/grid.md).
+  int attach_cells = 8;
+  // Births (docs/grid.md, "A moving face is born"): a face that moves into space the grid saw
+  // free is hit once per cell (a 3 m/s car's front crosses 1.6 cells a cycle), and a hit takes
+  // a cell believed free (O = 0.02) only to 0.045: the face never holds occupancy, only the
+  // side sliding along itself does, and a side alone cannot tell its motion (the aperture
+  // problem: the crossing group's car read at half its 3 m/s). The scan pair explains such a
+  // hit as the body's arrival; the free belief was of the space before the body came. So when
+  // the body is measured moving at least birth_min_cells a cycle, each attached hit whose
+  // occupancy is under its measurement m takes m (what a hit gives to unknown space) and the
+  // seen share 1 (its content is the body's: the next cycle moves it with its velocity). Slower
+  // bodies are left out: a walker's neighbours' new hits lie within attach_cells too.
+  bool births = true;
+  double birth_min_cells = 1.0;
   int min_hits = 4;
   double min_matched_share = 0.6;
   double ambiguity_radius_cells = 1.5;
@@ -100,11 +116,18 @@ struct ClusterMotionOptions {
   //     measured one (a fast body's piece the long pair aliases is not held still).
   // Its cells then take the measured velocity with the filter's known_confidence: the next
   // cycle moves them with it, a dynamic cluster above.
+  // With births on, the bodies are of all this scan's hits, whatever their occupancy: a walker
+  // far away walking into space the grid saw free (occluded-pedestrian's, at 17 m) never
+  // reaches min_occupancy under one hit a cell; and a body moved may instead have arrived: at
+  // least still_min_arrived_share of its hits on cells the grid believed free (O < 1/2). Where
+  // its older hits lie in an occluder's shadow now, nothing can be seen vacated. A moved body's
+  // hits are born as the attached ones above.
   bool still_bodies = true;
   int still_max_extent_cells = 8;  // 1.2 m at 0.15 m
   double still_min_displacement_cells = 1.5;
   double still_min_vacated_share = 0.5;
   double still_believed_share = 0.5;
+  double still_min_arrived_share = 0.5;
 
   // Throws lookout::InputError naming the first field out of range
   // (grid.filter.cluster_motion.<field>).

@@ -224,7 +224,10 @@ struct HeldStillScene {
   static std::vector<CellIndex> ArcAt(double y_cells) { return DiscArcCells(20.3, y_cells, 1.7); }
 
   // `free_elsewhere`: the scans see free space wherever they do not hit (false: unknown).
-  explicit HeldStillScene(bool free_elsewhere) {
+  // `arc_occupancy`: what the grid believes of the arc's cells now; `hide_older`: the last scan
+  // does not see where the arc was before (an occluder's shadow came over it).
+  explicit HeldStillScene(bool free_elsewhere, float arc_occupancy = 0.9f,
+                          bool hide_older = false) {
     for (int y = 30; y <= 31; ++y) {
       for (int x = 26; x <= 27; ++x) pole.push_back({x, y});
     }
@@ -247,14 +250,30 @@ struct HeldStillScene {
       flow.Remember(older);
     }
     z = scan(20.3 + 0.6 * lag, (lag + 1) * kClusterDtNs);
-    flow.Prepare(z);
     arc_now = ArcAt(20.3 + 0.6 * lag);
-    for (const CellIndex& c : arc_now) state.Set(c.ix, c.iy, 0.9f, 0.0f, 0.9f);
+    if (hide_older) {
+      for (int k = 0; k < lag; ++k) {
+        for (const CellIndex& c : ArcAt(20.3 + 0.6 * k)) {
+          float& p = z.p_occupied[g.StorageIndexOfLocal(c)];
+          if (p < 0.5f) p = 0.5f;
+        }
+      }
+    }
+    flow.Prepare(z);
+    for (const CellIndex& c : arc_now) state.Set(c.ix, c.iy, arc_occupancy, 0.0f, 0.9f);
     for (const CellIndex& c : pole) state.Set(c.ix, c.iy, 0.9f, 0.0f, 0.9f);
   }
   float Vy(int x, int y) const {
     const GridLayers& l = state.layers;
     return l.Values(state.ids.velocity_y_mps)[l.geometry().StorageIndexOfLocal({x, y})];
+  }
+  float Occupancy(const CellIndex& c) const {
+    const GridLayers& l = state.layers;
+    return l.Values(state.ids.occupancy)[l.geometry().StorageIndexOfLocal(c)];
+  }
+  float Seen(const CellIndex& c) const {
+    const GridLayers& l = state.layers;
+    return l.Values(state.ids.seen)[l.geometry().StorageIndexOfLocal(c)];
   }
 };
 
@@ -308,6 +327,98 @@ TEST(ApplyClusterMotionTest, HitsThatLeaveNothingSeenFreeAreNotMoved) {
   ApplyClusterMotion(scene.state.layers, scene.state.ids, scene.z, scene.flow, kClusterDtS, 0.25,
                      {});
   for (const CellIndex& c : scene.arc_now) EXPECT_EQ(scene.Vy(c.ix, c.iy), 0.0f);
+}
+
+// A far walker walking into space the grid saw free: its hits take a cell believed free (0.02)
+// only to 0.045, so it never holds occupancy and no body above min_occupancy holds it. With
+// births, the body of its hits is measured all the same, moved, and its hits take what a hit
+// gives to unknown space.
+TEST(ApplyClusterMotionTest, AWalkerInSpaceSeenFreeIsMovedAndBorn) {
+  for (const bool births : {true, false}) {
+    SCOPED_TRACE(births ? "births" : "no births");
+    HeldStillScene scene(/*free_elsewhere=*/true, /*arc_occupancy=*/0.045f);
+    ClusterMotionOptions options;
+    options.births = births;
+    ApplyClusterMotion(scene.state.layers, scene.state.ids, scene.z, scene.flow, kClusterDtS, 0.25,
+                       options);
+    for (const CellIndex& c : scene.arc_now) {
+      if (births) {
+        EXPECT_NEAR(scene.Vy(c.ix, c.iy), 1.125f, 0.2f) << c.ix << "," << c.iy;
+        EXPECT_FLOAT_EQ(scene.Occupancy(c), 0.7f);  // the scan's p_hit
+        EXPECT_FLOAT_EQ(scene.Seen(c), 1.0f);
+      } else {
+        EXPECT_EQ(scene.Vy(c.ix, c.iy), 0.0f);
+        EXPECT_FLOAT_EQ(scene.Occupancy(c), 0.045f);
+      }
+    }
+    // The pole, believed occupied and hit where it stands: neither moved nor changed.
+    for (const CellIndex& c : scene.pole) {
+      EXPECT_EQ(scene.Vy(c.ix, c.iy), 0.0f);
+      EXPECT_FLOAT_EQ(scene.Occupancy(c), 0.9f);
+    }
+  }
+}
+
+// The same walker after a nearer one's shadow came over where it was: nothing there is seen
+// vacated, but it arrived on cells the grid believed free, and is moved. Believed occupied
+// there instead (hits sliding along a surface the grid holds), it is not.
+TEST(ApplyClusterMotionTest, AWalkerWhoseOldPlaceIsHiddenIsMovedByWhereItArrived) {
+  HeldStillScene arrived(/*free_elsewhere=*/true, /*arc_occupancy=*/0.045f, /*hide_older=*/true);
+  ApplyClusterMotion(arrived.state.layers, arrived.state.ids, arrived.z, arrived.flow, kClusterDtS,
+                     0.25, {});
+  for (const CellIndex& c : arrived.arc_now) {
+    EXPECT_NEAR(arrived.Vy(c.ix, c.iy), 1.125f, 0.2f) << c.ix << "," << c.iy;
+  }
+  HeldStillScene held(/*free_elsewhere=*/true, /*arc_occupancy=*/0.9f, /*hide_older=*/true);
+  ApplyClusterMotion(held.state.layers, held.state.ids, held.z, held.flow, kClusterDtS, 0.25, {});
+  for (const CellIndex& c : held.arc_now) EXPECT_EQ(held.Vy(c.ix, c.iy), 0.0f);
+}
+
+// A body measured moving two cells a cycle: its front, hit for the first time on cells the grid
+// saw free, is born with it; under birth_min_cells (a walker's pace), it is not.
+TEST(ApplyClusterMotionTest, AFastBodysNewFaceIsBorn) {
+  for (const double min_cells : {1.0, 3.0}) {
+    SCOPED_TRACE(min_cells);
+    HandMadeFilterState state;
+    std::vector<CellIndex> body_now;
+    for (int y = 20; y <= 22; ++y) {
+      for (int x = 20; x <= 22; ++x) {
+        state.Set(x, y, 0.9f, 3.75f, 0.6f);
+        body_now.push_back({x, y});
+      }
+    }
+    // The face arriving: a column five cells ahead, on cells believed free.
+    std::vector<CellIndex> face;
+    for (int y = 20; y <= 22; ++y) {
+      face.push_back({27, y});
+      state.Set(27, y, 0.02f, 0.0f, 0.0f);
+    }
+    const ScrollingGridGeometry& g = state.layers.geometry();
+    std::vector<CellIndex> before = ShiftedCells(body_now, -2, 0);
+    const std::vector<CellIndex> face_before = ShiftedCells(face, -2, 0);
+    before.insert(before.end(), face_before.begin(), face_before.end());
+    std::vector<CellIndex> now = body_now;
+    now.insert(now.end(), face.begin(), face.end());
+    ScanFlow flow;
+    flow.Prepare(HitsMeasurement(g, before, kClusterDtNs));
+    flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
+    const MeasurementGrid z = HitsMeasurement(g, now, 2 * kClusterDtNs);
+    flow.Prepare(z);
+    ClusterMotionOptions options;
+    options.birth_min_cells = min_cells;
+    ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, options);
+    for (const CellIndex& c : face) {
+      const std::size_t s = g.StorageIndexOfLocal(c);
+      const float occupancy = state.layers.Values(state.ids.occupancy)[s];
+      if (min_cells <= 2.0) {
+        EXPECT_FLOAT_EQ(occupancy, 0.7f) << c.iy;
+        EXPECT_FLOAT_EQ(state.layers.Values(state.ids.seen)[s], 1.0f) << c.iy;
+      } else {
+        EXPECT_FLOAT_EQ(occupancy, 0.02f) << c.iy;
+      }
+      EXPECT_GT(state.Vx(c.ix, c.iy), 3.0f) << c.iy;  // attached either way
+    }
+  }
 }
 
 // --- in the filter: a walker seen by a lidar from one side
