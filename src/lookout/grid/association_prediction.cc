@@ -22,7 +22,9 @@ bool IsSource(double occupancy, double seen, const FilterOptions& options) {
          (seen >= options.seen_threshold && occupancy >= options.tracked_min_occupancy);
 }
 
-double PredictVelocity(double velocity_mps, double dt_s, const FilterOptions& options) {
+double PredictVelocity(double velocity_mps, double dt_s, bool observed,
+                       const FilterOptions& options) {
+  if (!observed && options.velocity_persists_unobserved) return velocity_mps;
   return velocity_mps * std::exp(-dt_s / options.velocity_persistence_s);
 }
 
@@ -92,8 +94,8 @@ std::vector<SearchWindow> SourceWindows(
 }
 
 Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
-                                 const WindowIndexer& indexer, double dt_s,
-                                 const FilterOptions& options, const ScanFlow* flow) {
+                                 const WindowIndexer& indexer, const MeasurementGrid& z,
+                                 double dt_s, const FilterOptions& options, const ScanFlow* flow) {
   Associations a;
   const auto occupancy = layers.Values(ids.occupancy);
   const auto seen = layers.Values(ids.seen);
@@ -143,10 +145,11 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
       const std::size_t cell = a.source[s];
       a.occupancy[s] = occupancy[cell];
       a.seen[s] = seen[cell];
-      a.velocity_x_mps[s] =
-          static_cast<float>(PredictVelocity(static_cast<double>(vx[cell]), dt_s, options));
-      a.velocity_y_mps[s] =
-          static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options));
+      const bool observed = Observed(z.p_occupied[cell]);
+      a.velocity_x_mps[s] = static_cast<float>(
+          PredictVelocity(static_cast<double>(vx[cell]), dt_s, observed, options));
+      a.velocity_y_mps[s] = static_cast<float>(
+          PredictVelocity(static_cast<double>(vy[cell]), dt_s, observed, options));
       a.confidence[s] = confidence[cell];
       for (std::size_t k = 0; k < kGridClassCount; ++k) {
         a.class_pmf[s * kGridClassCount + k] = class_layers[k][cell];

@@ -19,6 +19,7 @@
 
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"
+#include "lookout/grid/inverse_sensor_model.h"
 #include "lookout/grid/scan_flow.h"
 #include "lookout/grid/scrolling_grid.h"
 
@@ -33,8 +34,14 @@ double AssociationSigmaCells(const float* class_pmf, double dt_s, double cell_si
 bool IsSource(double occupancy, double seen, const FilterOptions& options);
 
 // The motion model's prediction of one velocity component over dt_s: the estimate decays by
-// exp(-dt / velocity_persistence_s) (FilterOptions says why). Pure.
-double PredictVelocity(double velocity_mps, double dt_s, const FilterOptions& options);
+// exp(-dt / velocity_persistence_s) where the scan observes the cell, and is carried as it is
+// where it does not, with velocity_persists_unobserved (FilterOptions says why). Pure.
+double PredictVelocity(double velocity_mps, double dt_s, bool observed,
+                       const FilterOptions& options);
+
+// Whether the scan says anything of a cell: its measurement is not exactly 1/2 (the inverse
+// sensor model leaves shadows, the space beyond the range and outside the field of view at 1/2).
+inline bool Observed(float measurement) { return measurement != 0.5f; }
 
 // The search window of a source with the given state (used by the fast path and the reference).
 SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
@@ -56,10 +63,12 @@ std::vector<SearchWindow> SourceWindows(
     std::span<const float> confidence, std::span<const float> class_pmf, double dt_s,
     double cell_size_m, const FilterOptions& options, const ScanFlow* flow);
 
-// Eq. 8-9 for every active cell: the sources with their state copied, their windows, and the
-// normalised Psi in Associations::weight. Parallel over sources; deterministic.
+// Eq. 8-9 for every active cell: the sources with their state copied (the velocity predicted,
+// observed or not by `z`), their windows, and the normalised Psi in Associations::weight.
+// Parallel over sources; deterministic.
 Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
-                                 const WindowIndexer& indexer, double dt_s,
-                                 const FilterOptions& options, const ScanFlow* flow = nullptr);
+                                 const WindowIndexer& indexer, const MeasurementGrid& z,
+                                 double dt_s, const FilterOptions& options,
+                                 const ScanFlow* flow = nullptr);
 
 }  // namespace lookout::grid

@@ -29,7 +29,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
 
   flow_.Prepare(z);
   Associations associations =
-      PredictAssociations(layers_, ids_, indexer, dt_s, options_, &flow_);                 // 2
+      PredictAssociations(layers_, ids_, indexer, z, dt_s, options_, &flow_);              // 2
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
   const TargetIndex targets = BuildTargetIndex(associations, workspace_);

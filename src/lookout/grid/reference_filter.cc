@@ -56,10 +56,11 @@ void ReferenceUpdate(GridLayers& layers, const FilterLayerIds& ids, const Measur
         continue;
       }
       window_locals.push_back({lx, ly});
-      window_vx.push_back(
-          static_cast<float>(PredictVelocity(static_cast<double>(vx[cell]), dt_s, options)));
-      window_vy.push_back(
-          static_cast<float>(PredictVelocity(static_cast<double>(vy[cell]), dt_s, options)));
+      const bool observed = Observed(z.p_occupied[cell]);
+      window_vx.push_back(static_cast<float>(
+          PredictVelocity(static_cast<double>(vx[cell]), dt_s, observed, options)));
+      window_vy.push_back(static_cast<float>(
+          PredictVelocity(static_cast<double>(vy[cell]), dt_s, observed, options)));
       window_seen.push_back(seen[cell]);
       window_confidence.push_back(confidence[cell]);
       for (std::size_t c = 0; c < kGridClassCount; ++c) {
