@@ -506,6 +506,25 @@ double MassSpreadM(const ExtendedGrid& grid, double floor) {
 // constraints of step 4 off), which spreads by construction: there the core above 0.5
 // shrinks (0.145 -> 0.032 m with the scan pair, 2026-12-03), so the core cannot be the measure.
 // With the scan pair the box stays tracked and step 4 holds it together: its core shrinks too.
+// `cycles` updates of a square box of side `side_m` seen moving at `v` from its lower-left
+// corner `start`, every scan seeing the rest free; and `cycles` updates seeing nothing (all 1/2).
+void SeeMovingBox(ExtendedGrid& grid, const Eigen::Vector2d& start, const Eigen::Vector2d& v,
+                  double side_m, int cycles, TimeNs& stamp) {
+  for (int k = 0; k < cycles; ++k) {
+    const Eigen::Vector2d p = start + v * (k * kDtS);
+    MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), side_m, side_m}});
+    z.stamp = stamp += kDtNs;
+    grid.Update(z, kDtS);
+  }
+}
+void SeeNothing(ExtendedGrid& grid, int cycles, TimeNs& stamp) {
+  for (int k = 0; k < cycles; ++k) {
+    MeasurementGrid unknown = Measure(grid.geometry(), {}, /*observed=*/false);
+    unknown.stamp = stamp += kDtNs;
+    grid.Update(unknown, kDtS);
+  }
+}
+
 TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
   const Eigen::Vector2d v(1.5, 0.0);
   const Eigen::Vector2d start(1.5, 2.4);
@@ -520,21 +539,12 @@ TEST(ExtendedGridTest, OccludedObjectPersistsAndSpreads) {
     ExtendedGrid grid(Geometry(64, 40), options);
     const double floor = options.occupancy_clamp;
     TimeNs stamp = 0;
-    for (int k = 0; k < kSeen; ++k) {
-      const Eigen::Vector2d p = start + v * (k * kDtS);
-      MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), 0.45, 0.45}});
-      z.stamp = stamp += kDtNs;
-      grid.Update(z, kDtS);
-    }
+    SeeMovingBox(grid, start, v, 0.45, kSeen, stamp);
     const double spread_before = MassSpreadM(grid, floor);
     const double core_before = MassSpreadM(grid, 0.5);
     const Eigen::Vector2d seen_at = start + v * ((kSeen - 1) * kDtS) + half_size;
     const double mass_before = MassNear(grid, seen_at, 1.0);
-    for (int k = 0; k < kHidden; ++k) {
-      MeasurementGrid unknown = Measure(grid.geometry(), {}, /*observed=*/false);
-      unknown.stamp = stamp += kDtNs;
-      grid.Update(unknown, kDtS);
-    }
+    SeeNothing(grid, kHidden, stamp);
     const Eigen::Vector2d truth = start + v * ((kSeen + kHidden - 1) * kDtS) + half_size;
     const double near = MassNear(grid, truth, 1.0);
     const double total = MassNear(grid, truth, 100.0);  // reported only (see the report)
@@ -568,19 +578,10 @@ TEST(ExtendedGridTest, AHiddenBodyKeepsItsSpeed) {
     options.velocity_persists_unobserved = persists;
     ExtendedGrid grid(Geometry(64, 40), options);
     TimeNs stamp = 0;
-    for (int k = 0; k < kSeen; ++k) {
-      const Eigen::Vector2d p = start + v * (k * kDtS);
-      MeasurementGrid z = Measure(grid.geometry(), {BoxM{p.x(), p.y(), 0.9, 0.9}});
-      z.stamp = stamp += kDtNs;
-      grid.Update(z, kDtS);
-    }
+    SeeMovingBox(grid, start, v, 0.9, kSeen, stamp);
     int seen_cells = 0;
     const double seen_speed = MeanVelocityIn(grid, everywhere, 0.3, &seen_cells).x();
-    for (int k = 0; k < kHidden; ++k) {
-      MeasurementGrid unknown = Measure(grid.geometry(), {}, /*observed=*/false);
-      unknown.stamp = stamp += kDtNs;
-      grid.Update(unknown, kDtS);
-    }
+    SeeNothing(grid, kHidden, stamp);
     int hidden_cells = 0;
     const double hidden_speed = MeanVelocityIn(grid, everywhere, 0.3, &hidden_cells).x();
     std::printf(
