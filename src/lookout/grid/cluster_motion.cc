@@ -204,6 +204,18 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
 
 }  // namespace
 
+void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans) {
+  constexpr float kCap = 1000.0f;  // 80 s at 12.5 Hz: far beyond any threshold, and exact
+  for (const std::size_t cell : z.touched) {
+    const float p = z.p_occupied[cell];
+    if (p > 0.5f) {
+      hit_scans[cell] = std::min(hit_scans[cell] + 1.0f, kCap);
+    } else if (p < 0.5f) {
+      hit_scans[cell] = 0.0f;  // seen free: whatever stood there left
+    }
+  }
+}
+
 void ClusterMotionOptions::Validate(const std::string& source) const {
   RequireClusterMotionOption(WithinUnit(blend), source, "blend", "must be in [0, 1]");
   RequireClusterMotionOption(search_half_cells >= 0 && search_half_cells <= 16, source,
@@ -212,6 +224,8 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              "must be in [0, 8]");
   RequireClusterMotionOption(std::isfinite(birth_min_cells) && birth_min_cells >= 0.0, source,
                              "birth_min_cells", "must be finite and >= 0");
+  RequireClusterMotionOption(staying_min_hit_scans >= 0, source, "staying_min_hit_scans",
+                             "must be >= 0");
   RequireClusterMotionOption(min_hits >= 1, source, "min_hits", "must be >= 1");
   RequireClusterMotionOption(WithinUnit(min_matched_share), source, "min_matched_share",
                              "must be in [0, 1]");
@@ -289,6 +303,8 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
 void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
                         const ScanFlow& flow, double dt_s, double known_confidence,
                         const ClusterMotionOptions& options) {
+  const std::span<float> hit_scans = layers.Values(ids.hit_scans);
+  CountHitScans(z, hit_scans);
   if (!options.enabled || !flow.HasPair()) return;
   const GridObjectOptions cluster_options = ClusterOptions(options);
   const std::vector<GridCluster> clusters = FindRigidClusters(
@@ -364,7 +380,10 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
         options.births && std::hypot(m.dx_cells, m.dy_cells) * per_cycle >= options.birth_min_cells;
     const double b = options.blend;
     for (const std::size_t cell : cluster.cells) {
-      if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell))) continue;  // staying fits
+      if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell)) &&
+          static_cast<double>(hit_scans[cell]) >= options.staying_min_hit_scans) {
+        continue;  // staying fits
+      }
       vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
       vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
     }

@@ -32,8 +32,9 @@
 //   - the baseline: one cycle, or the scan pair's long baseline (scan_flow.h) when the cluster's
 //     predicted displacement is under its long_lag_below_cells a cycle, scaled by the stamps;
 //   - measured: each cluster cell's velocity <- (1 - blend) V + blend v_body, except a cell this
-//     scan hits where the baseline's scan hit too although the body moved a cell or more since
-//     (staying explains it as well: a wall cell that rigidity links joined to a walker); each
+//     scan hits where the baseline's scan hit too although the body moved a cell or more since,
+//     and hit staying_min_hit_scans scans in a row (staying explains it as well: a wall cell
+//     that rigidity links joined to a walker, not a car's side sliding along itself); each
 //     attached hit with no trusted velocity of its own (confidence under the filter's
 //     known_confidence) takes v_body and that confidence, so the next cycle moves it with the
 //     body; and, when the body moved at least birth_min_cells a cycle, the occupancy of a hit on
@@ -81,6 +82,14 @@ struct ClusterMotionOptions {
   // seen share 1 (its content is the body's: the next cycle moves it with its velocity). Slower
   // bodies are left out: a walker's neighbours' new hits lie within attach_cells too.
   bool births = true;
+  // The exclusion above ("staying fits") only for cells hit at least this many scans in a row
+  // (the layer FilterLayerIds::hit_scans, counted at the start of the stage): a wall beside a
+  // walker has been hit where it stands for seconds; a car's side sliding along itself covers
+  // a cell for its length over its speed (1.5 s for a 4.5 m car at 3 m/s), and its first cells
+  // are new. Without the count, the crossing group's car, measured whole at 2.9-3.1 m/s, kept
+  // its side cells at 2.5-2.7 (docs/grid.md, "A car's side is not a wall"). 12: one second.
+  // 0: every such cell, as before.
+  int staying_min_hit_scans = 12;
   double birth_min_cells = 1.0;
   int min_hits = 4;
   double min_matched_share = 0.6;
@@ -149,8 +158,13 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
                                    const CellIndex& predicted, int search_half,
                                    const ClusterMotionOptions& options);
 
-// The stage above on `layers` (velocity and confidence), with `flow` prepared for `z` (before
-// ScanFlow::Remember), dt_s after the previous cycle. Nothing without a scan pair.
+// FilterLayerIds::hit_scans after the scan `z`: one more where it hits, 0 where it sees free,
+// unchanged where it says nothing. Pure on its arguments.
+void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans);
+
+// The stage above on `layers` (velocity and confidence; the hit count always), with `flow`
+// prepared for `z` (before ScanFlow::Remember), dt_s after the previous cycle. Nothing else
+// without a scan pair.
 void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
                         const ScanFlow& flow, double dt_s, double known_confidence,
                         const ClusterMotionOptions& options);

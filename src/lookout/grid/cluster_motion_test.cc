@@ -167,6 +167,9 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   }
   for (int x = 18; x <= 23; ++x) {
     state.Set(x, 18, 0.9f, 1.0f, 0.6f);
+    // The wall has been hit where it stands for two seconds; the body is new.
+    state.layers.Values(state.ids.hit_scans)[state.layers.geometry().StorageIndexOfLocal({x, 18})] =
+        25.0f;
     wall.push_back({x, 18});
   }
   // Between the two, a cell linking them (rigidity joins the wall to the body).
@@ -183,21 +186,27 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
   const MeasurementGrid z = HitsMeasurement(g, now, 2 * kClusterDtNs);
   flow.Prepare(z);
+  const HandMadeFilterState initial = state;
   ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, {});
 
   // The body: half way from 1 m/s to what the pair measured (3.75 m/s, the wall's hits in the
-  // body's score pulling it towards staying), except its trailing column, which the previous
-  // scan hit too (the block overlaps itself): staying explains those hits as well as a wall's.
+  // body's score pulling it towards staying), its trailing column too: the previous scan hit
+  // it (the block overlaps itself), but it is no wall, hit there for a second.
   for (const CellIndex& c : body_now) {
-    if (c.ix == 20) {
-      EXPECT_EQ(state.Vx(c.ix, c.iy), 1.0f) << c.iy;
-      continue;
-    }
     EXPECT_GT(state.Vx(c.ix, c.iy), 2.0f) << c.ix << "," << c.iy;
     EXPECT_LT(state.Vx(c.ix, c.iy), 2.4f) << c.ix << "," << c.iy;
   }
-  // The wall: hit before and now while the body moved two cells: staying explains it.
+  // The wall: hit before and now while the body moved two cells, and for two seconds: staying
+  // explains it.
   for (const CellIndex& c : wall) EXPECT_EQ(state.Vx(c.ix, c.iy), 1.0f) << c.ix;
+  // Without the count (every cell the two scans hit left out, as before): the trailing column
+  // keeps its own velocity too.
+  HandMadeFilterState uncounted = initial;
+  ClusterMotionOptions all_staying;
+  all_staying.staying_min_hit_scans = 0;
+  ApplyClusterMotion(uncounted.layers, uncounted.ids, z, flow, kClusterDtS, 0.25, all_staying);
+  for (int y = 20; y <= 22; ++y) EXPECT_EQ(uncounted.Vx(20, y), 1.0f) << y;
+  EXPECT_GT(uncounted.Vx(21, 21), 2.0f);
   // The arriving front: the body's velocity and a tracked cell's confidence.
   EXPECT_GT(state.Vx(arriving.ix, arriving.iy), 3.0f);
   EXPECT_FLOAT_EQ(state.Confidence(arriving.ix, arriving.iy), 0.25f);
@@ -209,6 +218,23 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   disabled.enabled = false;
   ApplyClusterMotion(off.layers, off.ids, z, flow, kClusterDtS, 0.25, disabled);
   EXPECT_EQ(off.Vx(21, 21), 1.0f);
+}
+
+TEST(CountHitScansTest, HitsCountUpFreeResetsUnobservedKeeps) {
+  const ScrollingGridGeometry g(kClusterCellM, 4, 1, CellIndex{0, 0});
+  std::vector<float> count(g.CellCount(), 0.0f);
+  MeasurementGrid z;
+  z.geometry = g;
+  // Cells 0-3: hit, hit, free, unobserved; three scans, then cell 1 seen free.
+  z.p_occupied = {0.7f, 0.7f, 0.3f, 0.5f};
+  z.touched = {0, 1, 2};
+  count[2] = 5.0f;
+  count[3] = 7.0f;
+  for (int k = 0; k < 3; ++k) CountHitScans(z, count);
+  EXPECT_EQ(count, (std::vector<float>{3.0f, 3.0f, 0.0f, 7.0f}));
+  z.p_occupied[1] = 0.3f;
+  CountHitScans(z, count);
+  EXPECT_EQ(count, (std::vector<float>{4.0f, 0.0f, 0.0f, 7.0f}));
 }
 
 // A walker's arc crossing the beams at 0.6 cell a cycle (1.1 m/s), believed still with a

@@ -23,6 +23,7 @@ FilterLayerIds AddFilterLayers(GridLayers& layers) {
     ids.class_pmf[static_cast<std::size_t>(c)] =
         layers.Add(kNames[static_cast<std::size_t>(c)], 1.0f / kGridClassCount);
   }
+  ids.hit_scans = layers.Add("hit_scans", 0.0f);
   return ids;
 }
 

@@ -42,6 +42,9 @@ struct FilterLayerIds {
   LayerId seen;                 // S(x): P(the occupancy was carried in from the previous map)
   std::array<LayerId, kNeighbourCount> rigidity;  // D(x, x + offset[d]), eq. 15; reset 0
   std::array<LayerId, kGridClassCount> class_pmf; // C(x, c); reset uniform
+  // Scans in a row the cell was hit, the scans that do not observe it skipped (cluster_motion.h:
+  // a wall is hit at the same place for seconds, a body's side sliding along itself is not).
+  LayerId hit_scans;  // reset 0
 };
 
 // Adds the filter's layers to `layers` (a programming error if their names exist).
