@@ -39,10 +39,6 @@ bool IsSource(double occupancy, double seen, const FilterOptions& options);
 double PredictVelocity(double velocity_mps, double dt_s, bool observed,
                        const FilterOptions& options);
 
-// Whether the scan says anything of a cell: its measurement is not exactly 1/2 (the inverse
-// sensor model leaves shadows, the space beyond the range and outside the field of view at 1/2).
-inline bool Observed(float measurement) { return measurement != 0.5f; }
-
 // The search window of a source with the given state (used by the fast path and the reference).
 SearchWindow SearchWindowFor(double velocity_x_mps, double velocity_y_mps, double seen,
                              double confidence, const float* class_pmf, double dt_s,

@@ -208,9 +208,9 @@ void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans) {
   constexpr float kCap = 1000.0f;  // 80 s at 12.5 Hz: far beyond any threshold, and exact
   for (const std::size_t cell : z.touched) {
     const float p = z.p_occupied[cell];
-    if (p > 0.5f) {
+    if (p > kUnknownProbability) {
       hit_scans[cell] = std::min(hit_scans[cell] + 1.0f, kCap);
-    } else if (p < 0.5f) {
+    } else if (p < kUnknownProbability) {
       hit_scans[cell] = 0.0f;  // seen free: whatever stood there left
     }
   }
@@ -375,9 +375,9 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
     if (!m.measured) continue;
     const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
     const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
-    const bool moved = std::hypot(m.dx_cells, m.dy_cells) >= 1.0;
-    const bool born =
-        options.births && std::hypot(m.dx_cells, m.dy_cells) * per_cycle >= options.birth_min_cells;
+    const double moved_cells = std::hypot(m.dx_cells, m.dy_cells);  // over the baseline
+    const bool moved = moved_cells >= 1.0;
+    const bool born = options.births && moved_cells * per_cycle >= options.birth_min_cells;
     const double b = options.blend;
     for (const std::size_t cell : cluster.cells) {
       if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell)) &&

@@ -55,6 +55,10 @@ namespace lookout::grid {
 // The value of a cell no beam says anything about.
 inline constexpr float kUnknownProbability = 0.5f;
 
+// Whether the scan says anything of a cell with measurement `p_occupied` (shadows, the space
+// beyond the range and outside the field of view stay at kUnknownProbability).
+inline bool Observed(float p_occupied) { return p_occupied != kUnknownProbability; }
+
 struct InverseSensorModelStats {
   int beams = 0;                // ranges in the scan
   int hit_beams = 0;            // a return inside max range
