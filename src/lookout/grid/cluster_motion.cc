@@ -54,16 +54,6 @@ double ParabolaVertex(double a, double b, double c) {
   return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
 }
 
-GridObjectOptions ClusterOptions(const ClusterMotionOptions& o) {
-  GridObjectOptions c;
-  c.min_occupancy = o.min_occupancy;
-  c.min_speed_mps = o.min_speed_mps;
-  c.min_velocity_confidence = o.min_velocity_confidence;
-  c.min_link = o.min_link;
-  c.min_cells = o.min_cells;
-  return c;
-}
-
 // A hit the stage explains as a moving body's arrival: at least the occupancy the hit gives to
 // unknown space (its measurement), and seen (ClusterMotionOptions::births).
 void BearHit(std::size_t s, const MeasurementGrid& z, std::span<float> occupancy,
@@ -144,7 +134,7 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
                      std::vector<std::uint8_t>& role, double dt_s, double known_confidence,
                      const ClusterMotionOptions& options, std::span<float> occupancy,
                      std::span<float> seen, std::span<float> vx, std::span<float> vy,
-                     std::span<float> confidence) {
+                     std::span<float> confidence, std::vector<MeasuredBody>& measured) {
   const HitMaps* older = flow.long_pair();
   if (older == nullptr) return;
   const int search_half = 2 * options.search_half_cells;
@@ -192,8 +182,12 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
     for (const CellIndex& c : body.cells) believed += speed(c);
     believed /= static_cast<double>(body.cells.size());
     if (believed > options.still_believed_share * std::hypot(body_vx, body_vy)) continue;
+    MeasuredBody& moved = measured.emplace_back();
+    moved.velocity_x_mps = body_vx;
+    moved.velocity_y_mps = body_vy;
     for (const CellIndex& c : body.cells) {
       const std::size_t s = g.StorageIndexOfLocal(c);
+      moved.cells.push_back(s);
       vx[s] = static_cast<float>(body_vx);
       vy[s] = static_cast<float>(body_vy);
       confidence[s] = static_cast<float>(known_confidence);
@@ -203,6 +197,16 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
 }
 
 }  // namespace
+
+GridObjectOptions RigidClusterOptions(const ClusterMotionOptions& o) {
+  GridObjectOptions c;
+  c.min_occupancy = o.min_occupancy;
+  c.min_speed_mps = o.min_speed_mps;
+  c.min_velocity_confidence = o.min_velocity_confidence;
+  c.min_link = o.min_link;
+  c.min_cells = o.min_cells;
+  return c;
+}
 
 void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans) {
   constexpr float kCap = 1000.0f;  // 80 s at 12.5 Hz: far beyond any threshold, and exact
@@ -244,7 +248,7 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              source, "still_believed_share", "must be finite and >= 0");
   RequireClusterMotionOption(WithinUnit(still_min_arrived_share), source, "still_min_arrived_share",
                              "must be in [0, 1]");
-  ClusterOptions(*this).Validate(source);
+  RigidClusterOptions(*this).Validate(source);
 }
 
 ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,
@@ -300,13 +304,15 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
   return out;
 }
 
-void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
-                        const ScanFlow& flow, double dt_s, double known_confidence,
-                        const ClusterMotionOptions& options) {
+std::vector<MeasuredBody> ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
+                                             const MeasurementGrid& z, const ScanFlow& flow,
+                                             double dt_s, double known_confidence,
+                                             const ClusterMotionOptions& options) {
   const std::span<float> hit_scans = layers.Values(ids.hit_scans);
   CountHitScans(z, hit_scans);
-  if (!options.enabled || !flow.HasPair()) return;
-  const GridObjectOptions cluster_options = ClusterOptions(options);
+  std::vector<MeasuredBody> measured;
+  if (!options.enabled || !flow.HasPair()) return measured;
+  const GridObjectOptions cluster_options = RigidClusterOptions(options);
   const std::vector<GridCluster> clusters = FindRigidClusters(
       layers, ids, DynamicCellMask(layers, ids, cluster_options), cluster_options);
   const ScrollingGridGeometry& g = layers.geometry();
@@ -378,6 +384,9 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
     const double moved_cells = std::hypot(m.dx_cells, m.dy_cells);  // over the baseline
     const bool moved = moved_cells >= 1.0;
     const bool born = options.births && moved_cells * per_cycle >= options.birth_min_cells;
+    if (std::hypot(body_vx, body_vy) >= options.min_speed_mps) {
+      measured.push_back({cluster.cells, body_vx, body_vy});
+    }
     const double b = options.blend;
     for (const std::size_t cell : cluster.cells) {
       if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell)) &&
@@ -397,8 +406,9 @@ void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const Mea
   }
   if (options.still_bodies) {
     MoveStillBodies(g, z, flow, role, dt_s, known_confidence, options, occupancy, seen, vx, vy,
-                    confidence);
+                    confidence, measured);
   }
+  return measured;
 }
 
 }  // namespace lookout::grid

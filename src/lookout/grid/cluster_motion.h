@@ -45,6 +45,7 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 #include "lookout/core/grid_geometry.h"
 #include "lookout/grid/scan_flow.h"
@@ -54,6 +55,7 @@ namespace lookout::grid {
 class GridLayers;
 struct FilterLayerIds;
 struct MeasurementGrid;
+struct GridObjectOptions;
 
 struct ClusterMotionOptions {
   // On by default since 2026-12-04: velocity RMSE better in 9 of the catalogue's 11 scenarios
@@ -143,6 +145,10 @@ struct ClusterMotionOptions {
   void Validate(const std::string& source = "cluster motion options") const;
 };
 
+// The clusters the stage measures (its cluster fields, above) as grid_objects.h's options: the
+// hidden bodies' stage (hidden_bodies.h) takes the same bodies.
+GridObjectOptions RigidClusterOptions(const ClusterMotionOptions& options);
+
 struct ClusterMotion {
   bool measured = false;
   // The displacement over the baseline of the maps measured, cells (sub-cell).
@@ -162,11 +168,21 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
 // unchanged where it says nothing. Pure on its arguments.
 void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans);
 
+// A body the stage measured moving this cycle (a cluster or a still body): its cells (storage
+// indices) and its measured velocity.
+struct MeasuredBody {
+  std::vector<std::size_t> cells;
+  double velocity_x_mps = 0.0;
+  double velocity_y_mps = 0.0;
+};
+
 // The stage above on `layers` (velocity and confidence; the hit count always), with `flow`
 // prepared for `z` (before ScanFlow::Remember), dt_s after the previous cycle. Nothing else
-// without a scan pair.
-void ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
-                        const ScanFlow& flow, double dt_s, double known_confidence,
-                        const ClusterMotionOptions& options);
+// without a scan pair. Returns the bodies it measured moving at least min_speed_mps, in the
+// order it measured them (the hidden bodies' stage takes them as confirmed movers).
+std::vector<MeasuredBody> ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
+                                             const MeasurementGrid& z, const ScanFlow& flow,
+                                             double dt_s, double known_confidence,
+                                             const ClusterMotionOptions& options);
 
 }  // namespace lookout::grid
