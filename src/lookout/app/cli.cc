@@ -104,6 +104,7 @@ struct PipelineChoices {
   std::string stereo_class = "on";
   std::string grid_scan_flow = "on";
   std::string grid_cluster_motion = "on";
+  std::string grid_hidden_bodies = "on";
   std::string tracker = "mht";
   std::string risk_shape = "boxes";
   std::string pedestrian_model = "constant-velocity";
@@ -114,6 +115,7 @@ struct PipelineChoices {
     o.stereo_class.enabled = stereo_class == "on";
     o.grid_filter.scan_flow.enabled = grid_scan_flow == "on";
     o.grid_filter.cluster_motion.enabled = grid_cluster_motion == "on";
+    o.grid_filter.hidden_bodies.enabled = grid_hidden_bodies == "on";
     o.ego_pose = ego_pose == "odometry" ? EgoPoseMode::kDeadReckoning
                                         : EgoPoseMode::kLidarLocalisation;
     o.lidar_objects =
@@ -151,6 +153,11 @@ void AddPipelineChoices(CLI::App* command, PipelineChoices& choices) {
       ->add_option("--grid-cluster-motion", choices.grid_cluster_motion,
                    "Each rigid cluster of the grid measured whole from the scan pair and its "
                    "velocity given to its cells (grid/cluster_motion.h): on (the default) or off")
+      ->check(CLI::IsMember({"on", "off"}));
+  command
+      ->add_option("--grid-hidden-bodies", choices.grid_hidden_bodies,
+                   "A rigid body of the grid that goes into a shadow carried whole at its "
+                   "velocity (grid/hidden_bodies.h): on (the default) or off")
       ->check(CLI::IsMember({"on", "off"}));
   command
       ->add_option("--tracker", choices.tracker,

@@ -19,6 +19,7 @@
 #include "lookout/grid/class_update.h"
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"
+#include "lookout/grid/hidden_bodies.h"
 #include "lookout/grid/inverse_sensor_model.h"
 #include "lookout/grid/scrolling_grid.h"
 
@@ -37,6 +38,8 @@ class ExtendedGrid {
   const FilterOptions& options() const { return options_; }
   // The scan pair's memory (the last Update's hits), for the reference and tests.
   const ScanFlow& scan_flow() const { return flow_; }
+  // The bodies carried through a shadow (hidden_bodies.h).
+  const HiddenBodies& hidden_bodies() const { return hidden_; }
 
   // Moves the window (new cells get the priors: O = 0.5, no velocity, uniform class).
   VacatedCells Recenter(const Eigen::Vector2d& position_m) { return layers_.Recenter(position_m); }
@@ -64,6 +67,7 @@ class ExtendedGrid {
   FilterLayerIds ids_;
   FilterWorkspace workspace_;
   ScanFlow flow_;
+  HiddenBodies hidden_;
   std::vector<StereoClassRegion> stereo_;
   Stats stats_;
 };

@@ -51,6 +51,7 @@ void FilterOptions::Validate(const std::string& source) const {
           "new_stay_probability", "must be in [0, 1)");
   scan_flow.Validate(source);
   cluster_motion.Validate(source);
+  hidden_bodies.Validate(source);
   Require(Positive(no_convergence_sigma), source, "no_convergence_sigma",
           "must be finite and > 0");
   Require(Positive(rigidity_sigma_cells), source, "rigidity_sigma_cells",

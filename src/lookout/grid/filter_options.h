@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lookout/grid/cluster_motion.h"
+#include "lookout/grid/hidden_bodies.h"
 #include "lookout/grid/scan_flow.h"
 
 namespace lookout::grid {
@@ -137,6 +138,9 @@ struct FilterOptions {
   // --- between steps 7 and 8: each rigid cluster's displacement measured whole from the scan
   // pair and given to its cells (cluster_motion.h says why and how).
   ClusterMotionOptions cluster_motion;
+  // Beyond the paper: a rigid body the scan stops seeing carried whole through the shadow
+  // (hidden_bodies.h says why and how).
+  HiddenBodyOptions hidden_bodies;
 
   // --- step 8, classes
   double class_floor = 0.01;           // mixed in uniformly each cycle: classes stay revisable

@@ -1,0 +1,268 @@
+#include "lookout/grid/hidden_bodies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "lookout/core/input_error.h"
+#include "lookout/grid/cluster_motion.h"
+#include "lookout/grid/filter_state.h"
+#include "lookout/grid/grid_objects.h"
+#include "lookout/grid/inverse_sensor_model.h"
+
+namespace lookout::grid {
+namespace {
+
+// The global cell of a body's cell at the body's current anchor, shifted by (dx, dy) cells.
+CellIndex GlobalCellOf(const HiddenBody& body, const HiddenBody::Cell& cell, int dx = 0,
+                       int dy = 0) {
+  return {static_cast<int>(std::lround(body.anchor_x_cells)) + cell.offset.ix + dx,
+          static_cast<int>(std::lround(body.anchor_y_cells)) + cell.offset.iy + dy};
+}
+
+// What the scan says of a body's cells, shifted by (dx, dy) cells from where they are.
+struct BodyView {
+  int in_window = 0;
+  int unobserved = 0;
+  int free = 0;
+};
+
+BodyView ViewOf(const HiddenBody& body, const ScrollingGridGeometry& g, const MeasurementGrid& z,
+                int dx = 0, int dy = 0) {
+  BodyView v;
+  for (const HiddenBody::Cell& cell : body.cells) {
+    const CellIndex c = GlobalCellOf(body, cell, dx, dy);
+    if (!g.Contains(c)) continue;
+    ++v.in_window;
+    const float p = z.p_occupied[g.StorageIndex(c)];
+    if (!Observed(p)) {
+      ++v.unobserved;
+    } else if (p < kUnknownProbability) {
+      ++v.free;
+    }
+  }
+  return v;
+}
+
+// Step 1's negative information: among the shifts within +-shift_cells, the one with the fewest
+// cells seen free (ties: the shortest, then the first in row order) moves the body; its view.
+BodyView PlaceWhereNotSeenFree(HiddenBody& body, const ScrollingGridGeometry& g,
+                               const MeasurementGrid& z, int shift_cells) {
+  BodyView best = ViewOf(body, g, z);
+  if (best.free == 0) return best;
+  int best_dx = 0, best_dy = 0;
+  for (int dy = -shift_cells; dy <= shift_cells; ++dy) {
+    for (int dx = -shift_cells; dx <= shift_cells; ++dx) {
+      const BodyView v = ViewOf(body, g, z, dx, dy);
+      const int length2 = dx * dx + dy * dy;
+      const int best_length2 = best_dx * best_dx + best_dy * best_dy;
+      if (v.free < best.free || (v.free == best.free && length2 < best_length2)) {
+        best = v;
+        best_dx = dx;
+        best_dy = dy;
+      }
+    }
+  }
+  body.anchor_x_cells += best_dx;
+  body.anchor_y_cells += best_dy;
+  return best;
+}
+
+// The body of `cells` (storage indices) anchored at its first cell, occupancies from
+// `occupancy`; no velocity yet.
+HiddenBody BodyOf(std::span<const std::size_t> cells, const ScrollingGridGeometry& g,
+                  std::span<const float> occupancy) {
+  HiddenBody body;
+  const CellIndex anchor = g.GlobalFromStorage(cells.front());
+  body.anchor_x_cells = anchor.ix;
+  body.anchor_y_cells = anchor.iy;
+  for (const std::size_t s : cells) {
+    const CellIndex c = g.GlobalFromStorage(s);
+    body.cells.push_back({{c.ix - anchor.ix, c.iy - anchor.iy}, occupancy[s]});
+  }
+  return body;
+}
+
+void Carry(HiddenBody& body, double dt_s, double cells_per_m) {
+  body.anchor_x_cells += body.velocity_x_mps * dt_s * cells_per_m;
+  body.anchor_y_cells += body.velocity_y_mps * dt_s * cells_per_m;
+  body.hidden_s += dt_s;
+}
+
+// 1 on the cells (storage order) of this cycle's measured bodies.
+std::vector<std::uint8_t> MeasuredMask(std::span<const MeasuredBody> measured, std::size_t cells) {
+  std::vector<std::uint8_t> mask(cells, 0);
+  for (const MeasuredBody& m : measured) {
+    for (const std::size_t s : m.cells) mask[s] = 1;
+  }
+  return mask;
+}
+
+bool Overlaps(const HiddenBody& body, const ScrollingGridGeometry& g,
+              const std::vector<std::uint8_t>& mask) {
+  return std::any_of(body.cells.begin(), body.cells.end(), [&](const HiddenBody::Cell& cell) {
+    const CellIndex c = GlobalCellOf(body, cell);
+    return g.Contains(c) && mask[g.StorageIndex(c)] != 0;
+  });
+}
+
+bool Forgotten(const HiddenBody& body, const BodyView& view, const HiddenBodyOptions& options) {
+  if (body.hidden_s > options.max_hidden_s || view.in_window == 0) return true;
+  if (view.unobserved == 0) return true;  // seen whole again: the filter holds it
+  return view.free >= options.drop_free_share * view.in_window;
+}
+
+// How many of the confirmed movers overlap each cluster.
+std::vector<int> MeasurementsOf(const std::vector<GridCluster>& clusters,
+                                const std::vector<HiddenBody>& confirmed,
+                                const ScrollingGridGeometry& g) {
+  std::vector<int> cluster_of(g.CellCount(), -1);
+  for (std::size_t k = 0; k < clusters.size(); ++k) {
+    for (const std::size_t s : clusters[k].cells) cluster_of[s] = static_cast<int>(k);
+  }
+  std::vector<int> count(clusters.size(), 0);
+  std::vector<std::size_t> counted_for(clusters.size(), confirmed.size());  // none yet
+  for (std::size_t r = 0; r < confirmed.size(); ++r) {
+    for (const HiddenBody::Cell& cell : confirmed[r].cells) {
+      const CellIndex c = GlobalCellOf(confirmed[r], cell);
+      if (!g.Contains(c)) continue;
+      const int k = cluster_of[g.StorageIndex(c)];
+      if (k < 0) continue;
+      const auto ku = static_cast<std::size_t>(k);
+      if (counted_for[ku] == r) continue;
+      counted_for[ku] = r;
+      ++count[ku];
+    }
+  }
+  return count;
+}
+
+// Step 3 for one body: its occupancy, velocity and confidence into its cells the scan does not
+// observe and where it says more than the filter, but for walls' places and the never observed.
+void WriteBody(const HiddenBody& body, GridLayers& layers, const FilterLayerIds& ids,
+               const MeasurementGrid& z, int staying_min_hit_scans) {
+  const ScrollingGridGeometry& g = layers.geometry();
+  const std::span<float> occupancy = layers.Values(ids.occupancy);
+  const std::span<const float> hit_scans = layers.Values(ids.hit_scans);
+  for (const HiddenBody::Cell& cell : body.cells) {
+    const CellIndex c = GlobalCellOf(body, cell);
+    if (!g.Contains(c)) continue;
+    const std::size_t s = g.StorageIndex(c);
+    if (Observed(z.p_occupied[s]) || occupancy[s] >= cell.occupancy ||
+        occupancy[s] == kUnknownProbability ||
+        hit_scans[s] >= static_cast<float>(staying_min_hit_scans)) {
+      continue;
+    }
+    occupancy[s] = cell.occupancy;
+    layers.Values(ids.velocity_x_mps)[s] = static_cast<float>(body.velocity_x_mps);
+    layers.Values(ids.velocity_y_mps)[s] = static_cast<float>(body.velocity_y_mps);
+    layers.Values(ids.velocity_confidence)[s] = static_cast<float>(body.confidence);
+    layers.Values(ids.seen)[s] = 1.0f;
+  }
+}
+
+// Step 4's body of a cluster: its cells and occupancy, its occupancy-weighted mean velocity and
+// confidence.
+HiddenBody BodyOfCluster(const GridCluster& cluster, const GridLayers& layers,
+                         const FilterLayerIds& ids) {
+  const std::span<const float> occupancy = layers.Values(ids.occupancy);
+  HiddenBody body = BodyOf(cluster.cells, layers.geometry(), occupancy);
+  double weight = 0.0;
+  for (const std::size_t s : cluster.cells) {
+    const auto o = static_cast<double>(occupancy[s]);
+    weight += o;
+    body.velocity_x_mps += o * static_cast<double>(layers.Values(ids.velocity_x_mps)[s]);
+    body.velocity_y_mps += o * static_cast<double>(layers.Values(ids.velocity_y_mps)[s]);
+    body.confidence += o * static_cast<double>(layers.Values(ids.velocity_confidence)[s]);
+  }
+  body.velocity_x_mps /= weight;
+  body.velocity_y_mps /= weight;
+  body.confidence /= weight;
+  return body;
+}
+
+}  // namespace
+
+void HiddenBodyOptions::Validate(const std::string& source) const {
+  const auto require = [&source](bool ok, const char* field, const char* problem) {
+    if (!ok) {
+      throw InputError(source, 0, std::string("grid.filter.hidden_bodies.") + field, problem);
+    }
+  };
+  const auto share = [](double v) { return v >= 0.0 && v <= 1.0; };  // NaN: false
+  require(share(min_hidden_share), "min_hidden_share", "must be in [0, 1]");
+  require(std::isfinite(max_hidden_s) && max_hidden_s >= 0.0, "max_hidden_s",
+          "must be finite and >= 0");
+  require(share(drop_free_share), "drop_free_share", "must be in [0, 1]");
+  require(std::isfinite(confirm_s) && confirm_s >= 0.0, "confirm_s", "must be finite and >= 0");
+  require(confirm_min_measurements >= 1, "confirm_min_measurements", "must be >= 1");
+  require(shift_cells >= 0 && shift_cells <= 4, "shift_cells", "must be in [0, 4]");
+}
+
+void HiddenBodies::Update(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z,
+                          double dt_s, std::span<const MeasuredBody> measured,
+                          const ClusterMotionOptions& clusters, const HiddenBodyOptions& options) {
+  if (!options.enabled) {
+    bodies_.clear();
+    confirmed_.clear();
+    return;
+  }
+  const ScrollingGridGeometry& g = layers.geometry();
+  const double cells_per_m = 1.0 / g.cell_size_m();
+  const std::vector<std::uint8_t> measured_now = MeasuredMask(measured, g.CellCount());
+
+  // 1-3: carry, forget, write.
+  std::vector<HiddenBody> kept;
+  kept.reserve(bodies_.size());
+  for (HiddenBody& body : bodies_) {
+    Carry(body, dt_s, cells_per_m);
+    const BodyView view = PlaceWhereNotSeenFree(body, g, z, options.shift_cells);
+    if (Forgotten(body, view, options) || Overlaps(body, g, measured_now)) continue;
+    WriteBody(body, layers, ids, z, clusters.staying_min_hit_scans);
+    kept.push_back(std::move(body));
+  }
+  bodies_ = std::move(kept);
+
+  // The confirmed movers: carried, aged out, and this cycle's added.
+  std::erase_if(confirmed_, [&](HiddenBody& body) {
+    Carry(body, dt_s, cells_per_m);
+    return body.hidden_s > options.confirm_s;
+  });
+  for (const MeasuredBody& m : measured) {
+    if (m.cells.empty()) continue;
+    HiddenBody& body = confirmed_.emplace_back(BodyOf(m.cells, g, layers.Values(ids.occupancy)));
+    body.velocity_x_mps = m.velocity_x_mps;
+    body.velocity_y_mps = m.velocity_y_mps;
+  }
+
+  // 4: remember the clusters going into a shadow.
+  const GridObjectOptions cluster_options = RigidClusterOptions(clusters);
+  const std::vector<GridCluster> found = FindRigidClusters(
+      layers, ids, DynamicCellMask(layers, ids, cluster_options), cluster_options);
+  if (found.empty()) return;
+  std::vector<std::uint8_t> covered(g.CellCount(), 0);
+  for (const HiddenBody& body : bodies_) {
+    for (const HiddenBody::Cell& cell : body.cells) {
+      const CellIndex c = GlobalCellOf(body, cell);
+      if (g.Contains(c)) covered[g.StorageIndex(c)] = 1;
+    }
+  }
+  const std::vector<int> measurements = MeasurementsOf(found, confirmed_, g);
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const GridCluster& cluster = found[k];
+    if (measurements[k] < options.confirm_min_measurements) continue;
+    int unobserved = 0;
+    bool taken = false;
+    for (const std::size_t s : cluster.cells) {
+      if (!Observed(z.p_occupied[s])) ++unobserved;
+      taken = taken || covered[s] != 0;
+    }
+    if (taken ||
+        unobserved < options.min_hidden_share * static_cast<double>(cluster.cells.size())) {
+      continue;
+    }
+    bodies_.push_back(BodyOfCluster(cluster, layers, ids));
+  }
+}
+
+}  // namespace lookout::grid
