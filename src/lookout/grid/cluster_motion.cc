@@ -54,6 +54,16 @@ double ParabolaVertex(double a, double b, double c) {
   return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
 }
 
+GridObjectOptions RigidClusterOptions(const ClusterMotionOptions& o) {
+  GridObjectOptions c;
+  c.min_occupancy = o.min_occupancy;
+  c.min_speed_mps = o.min_speed_mps;
+  c.min_velocity_confidence = o.min_velocity_confidence;
+  c.min_link = o.min_link;
+  c.min_cells = o.min_cells;
+  return c;
+}
+
 // A hit the stage explains as a moving body's arrival: at least the occupancy the hit gives to
 // unknown space (its measurement), and seen (ClusterMotionOptions::births).
 void BearHit(std::size_t s, const MeasurementGrid& z, std::span<float> occupancy,
@@ -198,16 +208,6 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
 
 }  // namespace
 
-GridObjectOptions RigidClusterOptions(const ClusterMotionOptions& o) {
-  GridObjectOptions c;
-  c.min_occupancy = o.min_occupancy;
-  c.min_speed_mps = o.min_speed_mps;
-  c.min_velocity_confidence = o.min_velocity_confidence;
-  c.min_link = o.min_link;
-  c.min_cells = o.min_cells;
-  return c;
-}
-
 void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans) {
   constexpr float kCap = 1000.0f;  // 80 s at 12.5 Hz: far beyond any threshold, and exact
   for (const std::size_t cell : z.touched) {
@@ -304,16 +304,17 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
   return out;
 }
 
-std::vector<MeasuredBody> ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
-                                             const MeasurementGrid& z, const ScanFlow& flow,
-                                             double dt_s, double known_confidence,
-                                             const ClusterMotionOptions& options) {
+ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
+                                      const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
+                                      double known_confidence,
+                                      const ClusterMotionOptions& options) {
   const std::span<float> hit_scans = layers.Values(ids.hit_scans);
   CountHitScans(z, hit_scans);
-  std::vector<MeasuredBody> measured;
-  if (!options.enabled || !flow.HasPair()) return measured;
+  ClusterStageOutput out;
+  std::vector<MeasuredBody>& measured = out.measured;
+  if (!options.enabled || !flow.HasPair()) return out;
   const GridObjectOptions cluster_options = RigidClusterOptions(options);
-  const std::vector<GridCluster> clusters = FindRigidClusters(
+  std::vector<GridCluster> clusters = FindRigidClusters(
       layers, ids, DynamicCellMask(layers, ids, cluster_options), cluster_options);
   const ScrollingGridGeometry& g = layers.geometry();
   const std::span<float> occupancy = layers.Values(ids.occupancy);
@@ -408,7 +409,8 @@ std::vector<MeasuredBody> ApplyClusterMotion(GridLayers& layers, const FilterLay
     MoveStillBodies(g, z, flow, role, dt_s, known_confidence, options, occupancy, seen, vx, vy,
                     confidence, measured);
   }
-  return measured;
+  for (GridCluster& cluster : clusters) out.clusters.push_back(std::move(cluster.cells));
+  return out;
 }
 
 }  // namespace lookout::grid

@@ -55,7 +55,6 @@ namespace lookout::grid {
 class GridLayers;
 struct FilterLayerIds;
 struct MeasurementGrid;
-struct GridObjectOptions;
 
 struct ClusterMotionOptions {
   // On by default since 2026-12-04: velocity RMSE better in 9 of the catalogue's 11 scenarios
@@ -145,10 +144,6 @@ struct ClusterMotionOptions {
   void Validate(const std::string& source = "cluster motion options") const;
 };
 
-// The clusters the stage measures (its cluster fields, above) as grid_objects.h's options: the
-// hidden bodies' stage (hidden_bodies.h) takes the same bodies.
-GridObjectOptions RigidClusterOptions(const ClusterMotionOptions& options);
-
 struct ClusterMotion {
   bool measured = false;
   // The displacement over the baseline of the maps measured, cells (sub-cell).
@@ -176,13 +171,20 @@ struct MeasuredBody {
   double velocity_y_mps = 0.0;
 };
 
+// What the stage found in a cycle, for the hidden bodies' stage (hidden_bodies.h): the rigid
+// clusters it worked on (storage indices; found on the state before its own changes), and the
+// bodies it measured moving at least min_speed_mps (clusters and still bodies), in the order it
+// measured them.
+struct ClusterStageOutput {
+  std::vector<std::vector<std::size_t>> clusters;
+  std::vector<MeasuredBody> measured;
+};
+
 // The stage above on `layers` (velocity and confidence; the hit count always), with `flow`
 // prepared for `z` (before ScanFlow::Remember), dt_s after the previous cycle. Nothing else
-// without a scan pair. Returns the bodies it measured moving at least min_speed_mps, in the
-// order it measured them (the hidden bodies' stage takes them as confirmed movers).
-std::vector<MeasuredBody> ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
-                                             const MeasurementGrid& z, const ScanFlow& flow,
-                                             double dt_s, double known_confidence,
-                                             const ClusterMotionOptions& options);
+// without a scan pair (then nothing found).
+ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
+                                      const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
+                                      double known_confidence, const ClusterMotionOptions& options);
 
 }  // namespace lookout::grid

@@ -47,11 +47,12 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d] = layers_.Values(ids_.rigidity[d]);
   UpdateRigidity(associations, targets, cells, indexer, workspace_, rigidity);             // 7
   // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
-  const std::vector<MeasuredBody> measured = ApplyClusterMotion(
+  const ClusterStageOutput found = ApplyClusterMotion(
       layers_, ids_, z, flow_, dt_s, options_.known_confidence, options_.cluster_motion);
   // Beyond the paper: the bodies going into a shadow remembered, those in one carried whole
   // (hidden_bodies.h).
-  hidden_.Update(layers_, ids_, z, dt_s, measured, options_.cluster_motion, options_.hidden_bodies);
+  hidden_.Update(layers_, ids_, z, dt_s, found, options_.cluster_motion.staying_min_hit_scans,
+                 options_.hidden_bodies);
   std::array<std::span<float>, kGridClassCount> classes;
   for (std::size_t c = 0; c < kGridClassCount; ++c) classes[c] = layers_.Values(ids_.class_pmf[c]);
   UpdateClasses(associations, targets, cells, geometry(), indexer, options_,

@@ -29,14 +29,14 @@
 //      the memory), nor a place hit staying_min_hit_scans scans in a row (a wall, whose back a
 //      body joined to it would otherwise carry along), nor a cell never observed (O exactly at
 //      the prior: a building's inside);
-//   4. remember: each rigid cluster (the clusters' stage's definition: dynamic cells linked by
-//      eq. 15's D) of which at least min_hidden_share of the cells are unobserved by this scan,
-//      which no remembered body covers, and which the clusters' stage measured moving whole at
-//      least confirm_min_measurements times within confirm_s (bodies so measured, carried since
-//      at their measured velocity, that overlap it): its cells with their occupancy, its
-//      occupancy-weighted mean velocity and confidence. The confirmation keeps out the static
-//      world's false-dynamic cells, small clusters the scan pair rarely measures moving
-//      (without it, static-world-drive's false-dynamic rate 0.0055 -> 0.045: walls' clusters
+//   4. remember: each rigid cluster of the clusters' stage (dynamic cells linked by eq. 15's D,
+//      found on the state before that stage's changes) of which at least min_hidden_share of the
+//      cells are unobserved by this scan, which no remembered body covers, and which the clusters'
+//      stage measured moving whole at least confirm_min_measurements times within confirm_s (bodies
+//      so measured, carried since at their measured velocity, that overlap it): its cells with
+//      their occupancy, its occupancy-weighted mean velocity and confidence. The confirmation keeps
+//      out the static world's false-dynamic cells, small clusters the scan pair rarely measures
+//      moving (without it, static-world-drive's false-dynamic rate 0.0055 -> 0.045: walls' clusters
 //      carried behind themselves).
 //
 // Deterministic: clusters in window order, bodies in the order they were remembered, one
@@ -54,8 +54,7 @@ namespace lookout::grid {
 class GridLayers;
 struct FilterLayerIds;
 struct MeasurementGrid;
-struct ClusterMotionOptions;
-struct MeasuredBody;
+struct ClusterStageOutput;
 
 struct HiddenBodyOptions {
   // On by default since 2026-12-05 (docs/grid.md). --grid-hidden-bodies off.
@@ -101,10 +100,10 @@ struct HiddenBody {
 class HiddenBodies {
  public:
   // One cycle on `layers` after the clusters' stage, with the scan `z` taken dt_s after the
-  // previous cycle; `measured` the bodies that stage measured moving this cycle, `clusters`
-  // its options (their cluster fields define the rigid clusters).
+  // previous cycle and what that stage found (its rigid clusters, the bodies it measured
+  // moving); staying_min_hit_scans is its count of a wall's scans (cluster_motion.h).
   void Update(GridLayers& layers, const FilterLayerIds& ids, const MeasurementGrid& z, double dt_s,
-              std::span<const MeasuredBody> measured, const ClusterMotionOptions& clusters,
+              const ClusterStageOutput& found, int staying_min_hit_scans,
               const HiddenBodyOptions& options);
 
   // The bodies carried through a shadow now.

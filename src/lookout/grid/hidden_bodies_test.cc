@@ -29,7 +29,7 @@ struct HiddenBodyScene {
   FilterLayerIds ids = AddFilterLayers(layers);
   HiddenBodies stage;
   HiddenBodyOptions options;
-  ClusterMotionOptions clusters;
+  int held_x0 = -1;  // the body the filter holds (HoldBodyAt), a rigid cluster; -1: none
 
   HiddenBodyScene() {
     const std::span<float> o = layers.Values(ids.occupancy);
@@ -50,6 +50,7 @@ struct HiddenBodyScene {
   }
   // What the filter would hold of the body with its left column at x0 (and nothing elsewhere).
   void HoldBodyAt(int x0) {
+    held_x0 = x0;
     std::span<float> o = layers.Values(ids.occupancy);
     for (std::size_t s = 0; s < o.size(); ++s) {
       o[s] = std::min(o[s], 0.2f);
@@ -66,6 +67,7 @@ struct HiddenBodyScene {
   // The filter having lost the body: its cells back to what a spread left (under the stage's
   // min_occupancy, no cluster).
   void LoseBody() {
+    held_x0 = -1;
     std::span<float> o = layers.Values(ids.occupancy);
     for (std::size_t s = 0; s < o.size(); ++s) o[s] = std::min(o[s], 0.55f);
   }
@@ -79,8 +81,14 @@ struct HiddenBodyScene {
     for (const std::size_t s : hidden) z.p_occupied[s] = kUnknownProbability;
     return z;
   }
+  // The stage after the clusters' one, which found the body the filter holds (if any) and
+  // measured `measured`.
   void Update(const MeasurementGrid& z, const std::vector<MeasuredBody>& measured) {
-    stage.Update(layers, ids, z, kBodyDtS, measured, clusters, options);
+    ClusterStageOutput found;
+    if (held_x0 >= 0) found.clusters.push_back(BodyCells(held_x0));
+    found.measured = measured;
+    stage.Update(layers, ids, z, kBodyDtS, found, ClusterMotionOptions{}.staying_min_hit_scans,
+                 options);
   }
   // Three cycles seen and measured moving (left column x0 - 3 .. x0 - 1), then the cycle it goes
   // into a shadow that covers x >= shadow_x0 (its left column x0): remembered there.
