@@ -36,10 +36,9 @@ std::vector<io::GridLayer8> GridLayersToRecord(const grid::ExtendedGrid& grid) {
   }
 
   const std::size_t n = o.size();
-  std::vector<io::GridLayer8> out = {{"occupancy", {}},  {"speed", {}},
-                                     {"direction", {}},  {"confidence", {}},
-                                     {"class", {}},      {"class_probability", {}},
-                                     {"rigidity", {}}};
+  std::vector<io::GridLayer8> out = {{"occupancy", {}},  {"speed", {}}, {"direction", {}},
+                                     {"confidence", {}}, {"class", {}}, {"class_probability", {}},
+                                     {"rigidity", {}},   {"hidden", {}}};
   for (io::GridLayer8& layer : out) layer.values.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = static_cast<double>(vx[i]);
@@ -58,6 +57,9 @@ std::vector<io::GridLayer8> GridLayersToRecord(const grid::ExtendedGrid& grid) {
     for (const std::vector<float>& l : links) strongest = std::max(strongest, l[i]);
     out[6].values[i] = UnitByte(static_cast<double>(strongest));
   }
+  const std::vector<std::uint8_t> hidden =
+      grid::HiddenBodyMask(grid.hidden_bodies(), grid.geometry());
+  for (std::size_t i = 0; i < n; ++i) out[7].values[i] = hidden[i] != 0 ? 255 : 0;
   return out;
 }
 

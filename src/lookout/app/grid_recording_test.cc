@@ -36,7 +36,7 @@ TEST(GridRecordingTest, LayersEncodeTheCellsState) {
   layers.Values(ids.rigidity[5])[cell] = 0.2f;
 
   const std::vector<io::GridLayer8> out = GridLayersToRecord(g);
-  ASSERT_EQ(out.size(), 7u);
+  ASSERT_EQ(out.size(), 8u);
   const std::size_t i = 1 * 4 + 2;  // window order
   const auto at = [&](const char* name) {
     for (const io::GridLayer8& l : out) {
@@ -55,6 +55,7 @@ TEST(GridRecordingTest, LayersEncodeTheCellsState) {
   EXPECT_EQ(at("class"), 3);
   EXPECT_EQ(at("class_probability"), 153);
   EXPECT_EQ(at("rigidity"), 51);
+  EXPECT_EQ(at("hidden"), 0);  // no body carried
   // An untouched cell: unknown occupancy, no speed, a uniform pmf (class 0 wins the tie).
   EXPECT_EQ(static_cast<int>(out[0].values[0]), 128);
   EXPECT_EQ(static_cast<int>(out[1].values[0]), 0);

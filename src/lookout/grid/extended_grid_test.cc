@@ -663,6 +663,9 @@ TEST(ExtendedGridTest, AHiddenWalkerIsCarriedWholeThroughTheShadow) {
       EXPECT_GE(least, 0.75 * seen);
       EXPECT_GE(last, seen);
       EXPECT_EQ(grid.hidden_bodies().bodies().size(), 1u);
+      const std::vector<std::uint8_t> mask = HiddenBodyMask(grid.hidden_bodies(), grid.geometry());
+      EXPECT_EQ(std::count(mask.begin(), mask.end(), 1),
+                static_cast<long>(grid.hidden_bodies().bodies()[0].cells.size()));
     } else {
       EXPECT_LT(last, 0.6 * seen);
     }

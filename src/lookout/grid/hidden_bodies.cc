@@ -271,4 +271,19 @@ void HiddenBodies::Update(GridLayers& layers, const FilterLayerIds& ids, const M
   }
 }
 
+std::vector<std::uint8_t> HiddenBodyMask(const HiddenBodies& bodies,
+                                         const ScrollingGridGeometry& geometry) {
+  std::vector<std::uint8_t> mask(geometry.CellCount(), 0);
+  for (const HiddenBody& body : bodies.bodies()) {
+    for (const HiddenBody::Cell& cell : body.cells) {
+      const CellIndex c = GlobalCellOf(body, cell);
+      if (!geometry.Contains(c)) continue;
+      const CellIndex local = geometry.LocalFromGlobal(c);
+      mask[static_cast<std::size_t>(local.iy) * static_cast<std::size_t>(geometry.width()) +
+           static_cast<std::size_t>(local.ix)] = 1;
+    }
+  }
+  return mask;
+}
+
 }  // namespace lookout::grid

@@ -43,6 +43,7 @@
 // thread. Not part of the literal reference (reference_filter.h): it is state carried across
 // cycles, not an equation of one.
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -52,6 +53,7 @@
 namespace lookout::grid {
 
 class GridLayers;
+class ScrollingGridGeometry;
 struct FilterLayerIds;
 struct MeasurementGrid;
 struct ClusterStageOutput;
@@ -115,5 +117,10 @@ class HiddenBodies {
   // velocity since (hidden_s: the time since their measurement).
   std::vector<HiddenBody> confirmed_;
 };
+
+// The window's cells (window order: local y times width plus local x) the carried bodies hold
+// now, 1 each, 0 elsewhere: the recording's `hidden` layer (app/grid_recording.h). Pure.
+std::vector<std::uint8_t> HiddenBodyMask(const HiddenBodies& bodies,
+                                         const ScrollingGridGeometry& geometry);
 
 }  // namespace lookout::grid

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -130,6 +131,27 @@ TEST(HiddenBodiesTest, ABodyGoingIntoAShadowIsCarriedWholeAtItsVelocity) {
       EXPECT_LE(scene.Occupancy(13 + k, y), 0.55f) << "ahead of it, cycle " << k;
     }
   }
+}
+
+TEST(HiddenBodiesTest, TheMaskShowsTheCarriedBodyInWindowOrder) {
+  HiddenBodyScene scene;
+  const ScrollingGridGeometry& g = scene.layers.geometry();
+  EXPECT_EQ(HiddenBodyMask(scene.stage, g), std::vector<std::uint8_t>(g.CellCount(), 0));
+  scene.SeeThenHide(10, 10);
+  scene.LoseBody();
+  scene.Update(scene.Scan({}, scene.Shadow(10)), {});  // carried to columns 11-13, rows 20-22
+  const std::vector<std::uint8_t> mask = HiddenBodyMask(scene.stage, g);
+  ASSERT_EQ(mask.size(), g.CellCount());
+  int set = 0;
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      const bool body = x >= 11 && x <= 13 && y >= 20 && y <= 22;
+      const std::uint8_t m = mask[static_cast<std::size_t>(y * g.width() + x)];
+      EXPECT_EQ(m, body ? 1 : 0) << "(" << x << ", " << y << ")";
+      set += m;
+    }
+  }
+  EXPECT_EQ(set, 9);
 }
 
 TEST(HiddenBodiesTest, ABodyNeverMeasuredMovingIsNotRemembered) {
