@@ -142,7 +142,8 @@ std::vector<int> MeasurementsOf(const std::vector<std::vector<std::size_t>>& clu
       const CellIndex c = GlobalCellOf(confirmed[r], cell);
       if (!g.Contains(c)) continue;
       const std::size_t s = g.StorageIndex(c);
-      const auto it = std::lower_bound(cluster_of.begin(), cluster_of.end(), std::pair{s, 0ul});
+      const auto it =
+          std::lower_bound(cluster_of.begin(), cluster_of.end(), std::pair{s, std::size_t{0}});
       if (it == cluster_of.end() || it->first != s) continue;
       const std::size_t ku = it->second;
       if (counted_for[ku] == r) continue;
@@ -273,14 +274,13 @@ void HiddenBodies::Update(GridLayers& layers, const FilterLayerIds& ids, const M
 
 std::vector<std::uint8_t> HiddenBodyMask(const HiddenBodies& bodies,
                                          const ScrollingGridGeometry& geometry) {
+  const GridGeometry window = geometry.WindowGeometry();
   std::vector<std::uint8_t> mask(geometry.CellCount(), 0);
   for (const HiddenBody& body : bodies.bodies()) {
     for (const HiddenBody::Cell& cell : body.cells) {
       const CellIndex c = GlobalCellOf(body, cell);
       if (!geometry.Contains(c)) continue;
-      const CellIndex local = geometry.LocalFromGlobal(c);
-      mask[static_cast<std::size_t>(local.iy) * static_cast<std::size_t>(geometry.width()) +
-           static_cast<std::size_t>(local.ix)] = 1;
+      mask[static_cast<std::size_t>(window.LinearIndex(geometry.LocalFromGlobal(c)))] = 1;
     }
   }
   return mask;

@@ -118,8 +118,8 @@ class HiddenBodies {
   std::vector<HiddenBody> confirmed_;
 };
 
-// The window's cells (window order: local y times width plus local x) the carried bodies hold
-// now, 1 each, 0 elsewhere: the recording's `hidden` layer (app/grid_recording.h). Pure.
+// The window's cells (window order: geometry.WindowGeometry()'s LinearIndex) the carried bodies
+// hold now, 1 each, 0 elsewhere: the recording's `hidden` layer (app/grid_recording.h). Pure.
 std::vector<std::uint8_t> HiddenBodyMask(const HiddenBodies& bodies,
                                          const ScrollingGridGeometry& geometry);
 
