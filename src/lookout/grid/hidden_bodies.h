@@ -37,7 +37,15 @@
 //      their occupancy, its occupancy-weighted mean velocity and confidence. The confirmation keeps
 //      out the static world's false-dynamic cells, small clusters the scan pair rarely measures
 //      moving (without it, static-world-drive's false-dynamic rate 0.0055 -> 0.045: walls' clusters
-//      carried behind themselves).
+//      carried behind themselves);
+//   5. remember a mover lost between two cycles: the clusters' stage's newest measurement of a
+//      body (within confirm_s), with at least confirm_min_measurements measurements overlapping
+//      it within confirm_s before it, when at least min_hidden_share of its carried cells are
+//      unobserved and nothing measured or remembered covers it: its cells, at the mean velocity
+//      of those measurements. A car leaving the field of view at 30 m/s relative to the ego is
+//      gone from the clusters (eq. 8 spreads its unobserved cells under their occupancy) before
+//      half of one is unobserved: step 4 never sees it go (fast-car's velocity error after its
+//      first second 1.01 -> 0.29 m/s, docs/grid.md).
 //
 // Deterministic: clusters in window order, bodies in the order they were remembered, one
 // thread. Not part of the literal reference (reference_filter.h): it is state carried across
@@ -113,8 +121,8 @@ class HiddenBodies {
 
  private:
   std::vector<HiddenBody> bodies_;
-  // The bodies the clusters' stage measured moving within confirm_s, carried at their measured
-  // velocity since (hidden_s: the time since their measurement).
+  // The bodies the clusters' stage measured moving within twice confirm_s, carried at their
+  // measured velocity since (hidden_s: the time since their measurement).
   std::vector<HiddenBody> confirmed_;
 };
 

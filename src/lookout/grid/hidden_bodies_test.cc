@@ -174,6 +174,51 @@ TEST(HiddenBodiesTest, ABodyNeverMeasuredMovingIsNotRemembered) {
   EXPECT_TRUE(once.stage.bodies().empty());
 }
 
+// Step 5: a mover the filter loses between two cycles (its cluster gone before half of it is
+// unobserved: out of the field of view at once) is remembered from its measurements, at their
+// mean velocity; measured twice only, or seen free where it would be, it is not.
+TEST(HiddenBodiesTest, AMoverLostBetweenTwoCyclesIsRememberedFromItsMeasurements) {
+  // Three measurements 0.3 m/s apart around kBodySpeedMps, each carried at its own velocity:
+  // within a cell of each other a cycle or two later.
+  const std::vector<double> measured_mps = {kBodySpeedMps - 0.3, kBodySpeedMps + 0.3,
+                                            kBodySpeedMps};
+  const auto see = [&](HiddenBodyScene& scene, std::size_t measurements) {
+    for (std::size_t k = 0; k < measurements; ++k) {
+      const int x0 = 7 + static_cast<int>(k);
+      scene.HoldBodyAt(x0);
+      scene.Update(scene.Scan(scene.BodyCells(x0), {}),
+                   {MeasuredBody{scene.BodyCells(x0), measured_mps[k], 0.0}});
+    }
+    scene.LoseBody();  // no cluster left
+  };
+  HiddenBodyScene lost;
+  see(lost, 3);
+  lost.Update(lost.Scan({}, lost.Shadow(0)), {});  // nothing in view
+  ASSERT_EQ(lost.stage.bodies().size(), 1u);
+  EXPECT_NEAR(lost.stage.bodies()[0].velocity_x_mps, kBodySpeedMps, 1e-9);
+  EXPECT_NEAR(lost.stage.bodies()[0].velocity_y_mps, 0.0, 1e-9);
+  // Carried and written: measured last with its left column at 9, one cycle to 10, the next to 11.
+  lost.LoseBody();
+  lost.Update(lost.Scan({}, lost.Shadow(0)), {});
+  for (int y = 20; y <= 22; ++y) {
+    for (int x = 11; x <= 13; ++x) {
+      EXPECT_FLOAT_EQ(lost.Occupancy(x, y), 0.9f) << "(" << x << ", " << y << ")";
+      EXPECT_FLOAT_EQ(lost.Vx(x, y), static_cast<float>(kBodySpeedMps));
+    }
+    EXPECT_LE(lost.Occupancy(14, y), 0.55f);
+  }
+
+  HiddenBodyScene twice;
+  see(twice, 2);
+  twice.Update(twice.Scan({}, twice.Shadow(0)), {});
+  EXPECT_TRUE(twice.stage.bodies().empty());
+
+  HiddenBodyScene seen_free;  // it stopped, or turned away: the scan sees its place free
+  see(seen_free, 3);
+  seen_free.Update(seen_free.Scan({}, {}), {});
+  EXPECT_TRUE(seen_free.stage.bodies().empty());
+}
+
 TEST(HiddenBodiesTest, WhereTheScanSeesItFreeItIsNotThere) {
   // The shadow's front edge at x = 14: carried one cell a cycle, the body's leading column
   // reaches it on the second cycle and is seen free there; one cell back it is not: shifted back.
