@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "lookout/core/planar_geometry.h"
+#include "lookout/grid/inverse_sensor_model.h"
 
 namespace lookout::grid {
 namespace {
@@ -109,13 +110,19 @@ void UpdateClasses(const Associations& a, const TargetIndex& targets,
                                         static_cast<double>(in.velocity_y_mps[c.cell]));
         const double conf = static_cast<double>(in.confidence[c.cell]);
         const ClassPmf by_speed = SpeedClassLikelihood(speed);
-        // The cell's local position, for the extent box.
-        const CellIndex local = geometry.LocalFromGlobal(geometry.GlobalFromStorage(c.cell));
-        const double occupied = occupied_in_box(local, r);
-        const ClassPmf by_extent = ExtentClassLikelihood(occupied, box_side);
         for (std::size_t k = 0; k < kGridClassCount; ++k) {
-          pmf[k] *= std::pow(static_cast<double>(by_speed[k]), conf) *
-                    std::pow(static_cast<double>(by_extent[k]), conf);
+          pmf[k] *= std::pow(static_cast<double>(by_speed[k]), conf);
+        }
+        const bool hidden_mover = !in.measured.empty() && !Observed(in.measured[c.cell]) &&
+                                  speed >= options.unobserved_mover_speed_mps;
+        if (!hidden_mover) {
+          // The cell's local position, for the extent box.
+          const CellIndex local = geometry.LocalFromGlobal(geometry.GlobalFromStorage(c.cell));
+          const double occupied = occupied_in_box(local, r);
+          const ClassPmf by_extent = ExtentClassLikelihood(occupied, box_side);
+          for (std::size_t k = 0; k < kGridClassCount; ++k) {
+            pmf[k] *= std::pow(static_cast<double>(by_extent[k]), conf);
+          }
         }
       }
       double total = 0.0;

@@ -835,6 +835,46 @@ TEST(ExtendedGridTest, FastLongClusterTendsToVehicle) {
   }
 }
 
+// A car gone out of view (FilterOptions::unobserved_mover_speed_mps): a 4.5 x 1.8 m body at
+// 8 m/s held as a vehicle, then a scan that observes none of it. Its cells have no hits around
+// them, which the extent cue reads as a small footprint, at 8 m/s a cyclist's (the speed cue
+// cannot tell the two apart there). Without the cue on unobserved movers it keeps its class.
+TEST(ExtendedGridTest, ACarGoneOutOfViewKeepsItsClass) {
+  const double vx = 8.0;
+  const BoxM footprint{1.2, 1.2, 4.5, 1.8};
+  for (const bool cue_hidden : {false, true}) {
+    SCOPED_TRACE(cue_hidden ? "extent cue on hidden movers" : "no extent cue on hidden movers");
+    FilterOptions options;
+    if (cue_hidden) options.unobserved_mover_speed_mps = 1e9;
+    ExtendedGrid grid(Geometry(64, 24), options);
+    GridLayers& l = grid.mutable_layers();
+    const auto& g = grid.geometry();
+    for (std::size_t i = 0; i < g.CellCount(); ++i) {
+      const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromStorage(i));
+      const bool in = c.x() >= footprint.x0_m && c.x() < footprint.x0_m + footprint.width_m &&
+                      c.y() >= footprint.y0_m && c.y() < footprint.y0_m + footprint.height_m;
+      l.Values(grid.ids().occupancy)[i] = in ? 0.95f : 0.02f;
+      l.Values(grid.ids().seen)[i] = 1.0f;
+      if (!in) continue;
+      l.Values(grid.ids().velocity_x_mps)[i] = static_cast<float>(vx);
+      l.Values(grid.ids().velocity_confidence)[i] = 1.0f;
+      const ClassPmf vehicle = {0.05f, 0.05f, 0.1f, 0.7f, 0.1f};
+      for (std::size_t k = 0; k < kGridClassCount; ++k) {
+        l.Values(grid.ids().class_pmf[k])[i] = vehicle[k];
+      }
+    }
+    grid.Update(Measure(g, {}, /*observed=*/false), kDtS);
+    const BoxM moved{footprint.x0_m + vx * kDtS, footprint.y0_m, footprint.width_m,
+                     footprint.height_m};
+    const GridClass hidden = ArgmaxClassIn(grid, moved);
+    if (cue_hidden) {
+      EXPECT_EQ(hidden, GridClass::kCyclist);
+    } else {
+      EXPECT_EQ(hidden, GridClass::kVehicle);
+    }
+  }
+}
+
 // The extent cue reads the scan's hits: a tracked cyclist (1.8 x 0.6 m) whose whole footprint
 // the grid holds occupied, seen on its near side only, fills about one box side of hits (a
 // cyclist's or a walker's), not its footprint's 48 cells (3.7 box sides, a car's). Its speed,

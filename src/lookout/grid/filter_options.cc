@@ -68,6 +68,8 @@ void FilterOptions::Validate(const std::string& source) const {
           "must be finite and > 0");
   Require(class_floor >= 0.0 && class_floor < 0.2, source, "class_floor", "must be in [0, 0.2)");
   Require(Positive(extent_radius_cells), source, "extent_radius_cells", "must be finite and > 0");
+  Require(std::isfinite(unobserved_mover_speed_mps) && unobserved_mover_speed_mps >= 0.0, source,
+          "unobserved_mover_speed_mps", "must be finite and >= 0");
   Require(std::isfinite(stereo_weight) && stereo_weight >= 0.0, source, "stereo_weight",
           "must be finite and >= 0");
 }
