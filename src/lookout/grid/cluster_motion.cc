@@ -129,6 +129,36 @@ std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
   return static_cast<double>(vacated) / left;
 }
 
+// Whether `body`'s hits lie on one line (their spread across it under half a cell) and (dx, dy)
+// moves them along it by more than half a cell: a line's motion along itself is not in the
+// scan (the aperture problem; a wall's hits sliding along it as the ego drives), only its motion
+// across it (a car's front face).
+bool SlidesAlongItsLine(const HitBody& body, double dx, double dy) {
+  const auto n = static_cast<double>(body.cells.size());
+  double mx = 0.0, my = 0.0;
+  for (const CellIndex& c : body.cells) {
+    mx += c.ix;
+    my += c.iy;
+  }
+  mx /= n;
+  my /= n;
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (const CellIndex& c : body.cells) {
+    sxx += (c.ix - mx) * (c.ix - mx);
+    syy += (c.iy - my) * (c.iy - my);
+    sxy += (c.ix - mx) * (c.iy - my);
+  }
+  sxx /= n;
+  syy /= n;
+  sxy /= n;
+  // The smaller eigenvalue of the scatter: the spread across the principal axis.
+  const double half_trace = 0.5 * (sxx + syy);
+  const double root = std::sqrt(std::max(0.0, half_trace * half_trace - (sxx * syy - sxy * sxy)));
+  if (half_trace - root >= 0.25) return false;  // (1/2 cell)^2
+  const double axis = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  return std::abs(dx * std::cos(axis) + dy * std::sin(axis)) > 0.5;
+}
+
 // The share of `body`'s hits on cells the grid believed free (O < 1/2).
 double ArrivedShare(const ScrollingGridGeometry& g, const HitBody& body,
                     std::span<const float> occupancy) {
@@ -148,7 +178,6 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
   const HitMaps* older = flow.long_pair();
   if (older == nullptr) return;
   const int search_half = 2 * options.search_half_cells;
-  const double per_cycle = flow.long_lag_scale();
   const double cells_per_mps = dt_s / g.cell_size_m();
   const auto member = [&](std::size_t s) {
     return z.p_occupied[s] > 0.5f &&
@@ -168,12 +197,30 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
         body.Extent() > options.still_max_extent_cells) {
       continue;
     }
-    const ClusterMotion m = MeasureClusterMotion(*older, body.cells, {0, 0}, search_half, options);
-    if (!m.measured || std::hypot(m.dx_cells, m.dy_cells) < options.still_min_displacement_cells ||
-        std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
+    const auto far_enough = [&](const ClusterMotion& m, int half) {
+      return m.measured &&
+             std::hypot(m.dx_cells, m.dy_cells) >= options.still_min_displacement_cells &&
+             std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) <= half - 1;
+    };
+    // The long pair holds a walker's displacement; a body faster than its search (1 cell a
+    // cycle over 6 scans: a 3 m/s car's face moves 1.6), the one-cycle pair, where it moves
+    // still_min_displacement_cells or more, but not along a line of hits.
+    const HitMaps* baseline = older;
+    double per_cycle = flow.long_lag_scale();
+    ClusterMotion m = MeasureClusterMotion(*older, body.cells, {0, 0}, search_half, options);
+    if (!m.measured || std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
+      m = MeasureClusterMotion(flow.short_pair(), body.cells, {0, 0}, options.search_half_cells,
+                               options);
+      if (!far_enough(m, options.search_half_cells) ||
+          SlidesAlongItsLine(body, m.dx_cells, m.dy_cells)) {
+        continue;
+      }
+      baseline = &flow.short_pair();
+      per_cycle = 1.0;
+    } else if (!far_enough(m, search_half)) {
       continue;
     }
-    const std::optional<double> vacated = VacatedShare(*older, body, m);
+    const std::optional<double> vacated = VacatedShare(*baseline, body, m);
     if ((!vacated || *vacated < options.still_min_vacated_share) &&
         !(options.births && ArrivedShare(g, body, occupancy) >= options.still_min_arrived_share)) {
       continue;
@@ -181,8 +228,9 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
     // The last cycle agrees: the hits moved back by one cycle's share land on its scan's.
     const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
     const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
-    if (ScoreOf(flow.short_pair(), body.cells, sx, sy) <
-        options.min_matched_share * 2.0 * static_cast<double>(body.cells.size())) {
+    if (baseline == older &&
+        ScoreOf(flow.short_pair(), body.cells, sx, sy) <
+            options.min_matched_share * 2.0 * static_cast<double>(body.cells.size())) {
       continue;
     }
     // The grid believed it slower.

@@ -116,7 +116,13 @@ struct ClusterMotionOptions {
   // moved when
   //   - the displacement is at least still_min_displacement_cells over the baseline, and not at
   //     the edge of the search (there the best is the search's edge, not the body's: a car's
-  //     side sliding along itself aliases to it);
+  //     side sliding along itself aliases to it); when the long pair finds none within its
+  //     search (+-6 cells over six scans: a body faster than a cell a cycle, a 3 m/s car's face
+  //     at 1.6), the one-cycle pair is asked the same (+-search_half_cells), unless the body's
+  //     hits are one line and the displacement runs along it (a line's motion along itself is
+  //     not in the scan: a wall's hits sliding along it as the ego drives). Without it the
+  //     crossing group's car, its face new each scan and its side read still, was measured by
+  //     nothing for its first 1.5 s in view (docs/grid.md, "A face too fast for the long pair");
   //   - the body left where it was: of the older scan's hits around the body that this scan
   //     does not hit, at least still_min_vacated_share are seen free now (a wall's hits
   //     sliding along it as the ego drives leave nothing seen through);

@@ -400,6 +400,70 @@ TEST(ApplyClusterMotionTest, AWalkerWhoseOldPlaceIsHiddenIsMovedByWhereItArrived
   for (const CellIndex& c : held.arc_now) EXPECT_EQ(held.Vy(c.ix, c.iy), 0.0f);
 }
 
+// A car's front face (six hits across x) and the first two cells of its side, seen for the
+// first time on space seen free and believed still, the grid holding nothing of it (0.045 a
+// cell: one hit on free space). Moving two cells a cycle (3.75 m/s) it is 12 cells further than
+// the long pair's scan (six scans back), beyond that pair's +-6 search: the one-cycle pair
+// measures it. `sliding`: instead a line of four hits moving two cells a cycle along itself, as
+// a wall's hits slide along it while the ego drives (the crowd's walls did).
+struct NewFaceScene {
+  HandMadeFilterState state;
+  ScanFlow flow;
+  MeasurementGrid z;
+  std::vector<CellIndex> hits_now;
+
+  static std::vector<CellIndex> HitsAt(int step, bool sliding) {
+    std::vector<CellIndex> hits;
+    if (sliding) {
+      for (int k = 0; k < 4; ++k) hits.push_back({20, 4 + 2 * step + k});
+      return hits;
+    }
+    const int x = 40 - 2 * step;
+    for (int k = 0; k < 6; ++k) hits.push_back({x, 20 + k});
+    hits.push_back({x + 1, 20});
+    hits.push_back({x + 2, 20});
+    return hits;
+  }
+  explicit NewFaceScene(bool sliding) {
+    const ScrollingGridGeometry& g = state.layers.geometry();
+    const int lag = ScanFlowOptions{}.long_lag_scans;
+    for (int k = 0; k < lag; ++k) {
+      const MeasurementGrid older = HitsMeasurement(g, HitsAt(k, sliding), (k + 1) * kClusterDtNs);
+      flow.Prepare(older);
+      flow.Remember(older);
+    }
+    hits_now = HitsAt(lag, sliding);
+    z = HitsMeasurement(g, hits_now, (lag + 1) * kClusterDtNs);
+    flow.Prepare(z);
+    for (const CellIndex& c : hits_now) state.Set(c.ix, c.iy, 0.045f, 0.0f, 0.9f);
+  }
+  float Vy(const CellIndex& c) const {
+    const GridLayers& l = state.layers;
+    return l.Values(state.ids.velocity_y_mps)[l.geometry().StorageIndexOfLocal(c)];
+  }
+};
+
+TEST(ApplyClusterMotionTest, AFaceTooFastForTheLongPairIsMeasuredOverOneCycle) {
+  NewFaceScene face(/*sliding=*/false);
+  ASSERT_NE(face.flow.long_pair(), nullptr);
+  ApplyClusterMotion(face.state.layers, face.state.ids, face.z, face.flow, kClusterDtS, 0.25, {});
+  for (const CellIndex& c : face.hits_now) {
+    EXPECT_NEAR(face.state.Vx(c.ix, c.iy), -3.75f, 0.2f) << c.ix << "," << c.iy;
+    EXPECT_NEAR(face.Vy(c), 0.0f, 0.2f);
+    EXPECT_FLOAT_EQ(face.state.Confidence(c.ix, c.iy), 0.25f);
+  }
+  // A line sliding along itself is measured at (0, 2) cells by its ends but not moved: a line's
+  // motion along itself is not in the scan (the aperture problem).
+  NewFaceScene sliding(/*sliding=*/true);
+  ApplyClusterMotion(sliding.state.layers, sliding.state.ids, sliding.z, sliding.flow, kClusterDtS,
+                     0.25, {});
+  for (const CellIndex& c : sliding.hits_now) {
+    EXPECT_EQ(sliding.state.Vx(c.ix, c.iy), 0.0f);
+    EXPECT_EQ(sliding.Vy(c), 0.0f) << c.ix << "," << c.iy;
+    EXPECT_FLOAT_EQ(sliding.state.Confidence(c.ix, c.iy), 0.9f);
+  }
+}
+
 // A body measured moving two cells a cycle: its front, hit for the first time on cells the grid
 // saw free, is born with it; under birth_min_cells (a walker's pace), it is not.
 TEST(ApplyClusterMotionTest, AFastBodysNewFaceIsBorn) {
