@@ -89,6 +89,9 @@ struct ClusterMotionOptions {
   // a cell for its length over its speed (1.5 s for a 4.5 m car at 3 m/s), and its first cells
   // are new. Without the count, the crossing group's car, measured whole at 2.9-3.1 m/s, kept
   // its side cells at 2.5-2.7 (docs/grid.md, "A car's side is not a wall"). 12: one second.
+  // For a body moving a cell a cycle or more, at least its extent along its motion over its
+  // displacement a cycle, two scans spare: a wall is hit for longer than a body takes to pass
+  // it, and the crossing group's car, 4.5 m at 3 m/s, covers a cell of its side for 19 scans.
   // 0: every such cell, as before.
   int staying_min_hit_scans = 12;
   double birth_min_cells = 1.0;

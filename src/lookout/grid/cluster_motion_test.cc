@@ -220,6 +220,53 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   EXPECT_EQ(off.Vx(21, 21), 1.0f);
 }
 
+// A car's side, 22 cells along x with its 12-cell front face at x = 9, moving 2 cells a cycle
+// towards -x (3.75 m/s), believed at 1 m/s: each side cell stays under the sliding side for 11
+// scans and more, and has been hit 13 in a row, more than staying_min_hit_scans (12); a wall
+// cell beside it, linked to it, 40. The side is no wall: hit for no longer than the car takes to
+// pass (its 23 cells along x over 2 a cycle, two scans spare); the wall is.
+TEST(ApplyClusterMotionTest, AFastCarsSideHitLongerThanTheCountIsNoWall) {
+  HandMadeFilterState state;
+  const ScrollingGridGeometry& g = state.layers.geometry();
+  const auto hit_scans = [&](const CellIndex& c) -> float& {
+    return state.layers.Values(state.ids.hit_scans)[g.StorageIndexOfLocal(c)];
+  };
+  std::vector<CellIndex> car_now;
+  for (int x = 10; x < 32; ++x) car_now.push_back({x, 20});
+  for (int y = 21; y <= 31; ++y) car_now.push_back({9, y});
+  for (const CellIndex& c : car_now) {
+    state.Set(c.ix, c.iy, 0.9f, -1.0f, 0.6f);
+    hit_scans(c) = c.ix >= 12 && c.iy == 20 ? 13.0f : 1.0f;  // the side's first cells are new
+  }
+  const CellIndex wall{32, 20};
+  state.Set(wall.ix, wall.iy, 0.9f, -1.0f, 0.6f);
+  hit_scans(wall) = 40.0f;
+  std::vector<CellIndex> before = ShiftedCells(car_now, 2, 0);
+  before.push_back(wall);
+  std::vector<CellIndex> now = car_now;
+  now.push_back(wall);
+  ScanFlow flow;
+  flow.Prepare(HitsMeasurement(g, before, kClusterDtNs));
+  flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
+  const MeasurementGrid z = HitsMeasurement(g, now, 2 * kClusterDtNs);
+  flow.Prepare(z);
+  const HandMadeFilterState initial = state;
+  ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, {});
+  // Half way from -1 m/s to the measured -3.75 (the wall's hit pulls the score to staying a
+  // little), the side's old cells as its new ones.
+  for (const CellIndex& c : car_now) {
+    EXPECT_LT(state.Vx(c.ix, c.iy), -2.0f) << c.ix << "," << c.iy;
+  }
+  EXPECT_EQ(state.Vx(wall.ix, wall.iy), -1.0f);
+  // Hit for longer than the car takes to pass, the same cells are a wall's.
+  HandMadeFilterState long_hit = initial;
+  for (int x = 12; x < 32; ++x) {
+    long_hit.layers.Values(long_hit.ids.hit_scans)[g.StorageIndexOfLocal({x, 20})] = 40.0f;
+  }
+  ApplyClusterMotion(long_hit.layers, long_hit.ids, z, flow, kClusterDtS, 0.25, {});
+  for (int x = 12; x < 32; ++x) EXPECT_EQ(long_hit.Vx(x, 20), -1.0f) << x;
+}
+
 TEST(CountHitScansTest, HitsCountUpFreeResetsUnobservedKeeps) {
   const ScrollingGridGeometry g(kClusterCellM, 4, 1, CellIndex{0, 0});
   std::vector<float> count(g.CellCount(), 0.0f);
