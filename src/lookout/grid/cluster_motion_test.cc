@@ -154,6 +154,19 @@ MeasurementGrid HitsMeasurement(const ScrollingGridGeometry& g, const std::vecto
   return z;
 }
 
+// The scan pair of two scans a cycle apart, hitting `before` then `now`; `z` is the second.
+struct TwoScans {
+  ScanFlow flow;
+  MeasurementGrid z;
+  TwoScans(const ScrollingGridGeometry& g, const std::vector<CellIndex>& before,
+           const std::vector<CellIndex>& now) {
+    flow.Prepare(HitsMeasurement(g, before, kClusterDtNs));
+    flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
+    z = HitsMeasurement(g, now, 2 * kClusterDtNs);
+    flow.Prepare(z);
+  }
+};
+
 TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeepsItsOwn) {
   HandMadeFilterState state;
   // The body: a 3 x 3 block at x 20-22, y 20-22, truly moving 2 cells a cycle along x
@@ -181,11 +194,9 @@ TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeeps
   std::vector<CellIndex> now = body_now;
   now.insert(now.end(), wall.begin(), wall.end());
   now.push_back(arriving);
-  ScanFlow flow;
-  flow.Prepare(HitsMeasurement(g, before, kClusterDtNs));
-  flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
-  const MeasurementGrid z = HitsMeasurement(g, now, 2 * kClusterDtNs);
-  flow.Prepare(z);
+  const TwoScans scans(g, before, now);
+  const ScanFlow& flow = scans.flow;
+  const MeasurementGrid& z = scans.z;
   const HandMadeFilterState initial = state;
   ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, {});
 
@@ -241,17 +252,11 @@ TEST(ApplyClusterMotionTest, AFastCarsSideHitLongerThanTheCountIsNoWall) {
   const CellIndex wall{32, 20};
   state.Set(wall.ix, wall.iy, 0.9f, -1.0f, 0.6f);
   hit_scans(wall) = 40.0f;
-  std::vector<CellIndex> before = ShiftedCells(car_now, 2, 0);
-  before.push_back(wall);
-  std::vector<CellIndex> now = car_now;
-  now.push_back(wall);
-  ScanFlow flow;
-  flow.Prepare(HitsMeasurement(g, before, kClusterDtNs));
-  flow.Remember(HitsMeasurement(g, before, kClusterDtNs));
-  const MeasurementGrid z = HitsMeasurement(g, now, 2 * kClusterDtNs);
-  flow.Prepare(z);
+  std::vector<CellIndex> before = ShiftedCells(car_now, 2, 0), now = car_now;
+  for (std::vector<CellIndex>* scan : {&before, &now}) scan->push_back(wall);  // hit in both
+  const TwoScans scans(g, before, now);
   const HandMadeFilterState initial = state;
-  ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, {});
+  ApplyClusterMotion(state.layers, state.ids, scans.z, scans.flow, kClusterDtS, 0.25, {});
   // Half way from -1 m/s to the measured -3.75 (the wall's hit pulls the score to staying a
   // little), the side's old cells as its new ones.
   for (const CellIndex& c : car_now) {
@@ -263,7 +268,7 @@ TEST(ApplyClusterMotionTest, AFastCarsSideHitLongerThanTheCountIsNoWall) {
   for (int x = 12; x < 32; ++x) {
     long_hit.layers.Values(long_hit.ids.hit_scans)[g.StorageIndexOfLocal({x, 20})] = 40.0f;
   }
-  ApplyClusterMotion(long_hit.layers, long_hit.ids, z, flow, kClusterDtS, 0.25, {});
+  ApplyClusterMotion(long_hit.layers, long_hit.ids, scans.z, scans.flow, kClusterDtS, 0.25, {});
   for (int x = 12; x < 32; ++x) EXPECT_EQ(long_hit.Vx(x, 20), -1.0f) << x;
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <utility>
 #include <vector>
@@ -835,6 +836,28 @@ TEST(ExtendedGridTest, FastLongClusterTendsToVehicle) {
   }
 }
 
+// A body the grid holds by hand: `footprint` believed occupied (0.95) and moving at vx along x
+// with full confidence (and `pmf` as its class, when given), the rest believed free (0.02);
+// everything seen.
+void HoldFootprint(ExtendedGrid& grid, const BoxM& footprint, double vx,
+                   const std::optional<ClassPmf>& pmf = std::nullopt) {
+  GridLayers& l = grid.mutable_layers();
+  const auto& g = grid.geometry();
+  for (std::size_t i = 0; i < g.CellCount(); ++i) {
+    const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromStorage(i));
+    const bool in = c.x() >= footprint.x0_m && c.x() < footprint.x0_m + footprint.width_m &&
+                    c.y() >= footprint.y0_m && c.y() < footprint.y0_m + footprint.height_m;
+    l.Values(grid.ids().occupancy)[i] = in ? 0.95f : 0.02f;
+    l.Values(grid.ids().seen)[i] = 1.0f;
+    if (!in) continue;
+    l.Values(grid.ids().velocity_x_mps)[i] = static_cast<float>(vx);
+    l.Values(grid.ids().velocity_confidence)[i] = 1.0f;
+    for (std::size_t k = 0; pmf && k < kGridClassCount; ++k) {
+      l.Values(grid.ids().class_pmf[k])[i] = (*pmf)[k];
+    }
+  }
+}
+
 // A car gone out of view (FilterOptions::unobserved_mover_speed_mps): a 4.5 x 1.8 m body at
 // 8 m/s held as a vehicle, then a scan that observes none of it. Its cells have no hits around
 // them, which the extent cue reads as a small footprint, at 8 m/s a cyclist's (the speed cue
@@ -847,22 +870,8 @@ TEST(ExtendedGridTest, ACarGoneOutOfViewKeepsItsClass) {
     FilterOptions options;
     if (cue_hidden) options.unobserved_mover_speed_mps = 1e9;
     ExtendedGrid grid(Geometry(64, 24), options);
-    GridLayers& l = grid.mutable_layers();
     const auto& g = grid.geometry();
-    for (std::size_t i = 0; i < g.CellCount(); ++i) {
-      const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromStorage(i));
-      const bool in = c.x() >= footprint.x0_m && c.x() < footprint.x0_m + footprint.width_m &&
-                      c.y() >= footprint.y0_m && c.y() < footprint.y0_m + footprint.height_m;
-      l.Values(grid.ids().occupancy)[i] = in ? 0.95f : 0.02f;
-      l.Values(grid.ids().seen)[i] = 1.0f;
-      if (!in) continue;
-      l.Values(grid.ids().velocity_x_mps)[i] = static_cast<float>(vx);
-      l.Values(grid.ids().velocity_confidence)[i] = 1.0f;
-      const ClassPmf vehicle = {0.05f, 0.05f, 0.1f, 0.7f, 0.1f};
-      for (std::size_t k = 0; k < kGridClassCount; ++k) {
-        l.Values(grid.ids().class_pmf[k])[i] = vehicle[k];
-      }
-    }
+    HoldFootprint(grid, footprint, vx, ClassPmf{0.05f, 0.05f, 0.1f, 0.7f, 0.1f});
     grid.Update(Measure(g, {}, /*observed=*/false), kDtS);
     const BoxM moved{footprint.x0_m + vx * kDtS, footprint.y0_m, footprint.width_m,
                      footprint.height_m};
@@ -881,23 +890,10 @@ TEST(ExtendedGridTest, ACarGoneOutOfViewKeepsItsClass) {
 // 5 m/s, rules out a walker; the cue must not rule out a cyclist.
 TEST(ExtendedGridTest, TheExtentCueCountsTheScansHitsNotTheTrackedFootprint) {
   ExtendedGrid grid(Geometry(48, 24));
-  GridLayers& l = grid.mutable_layers();
   const auto& g = grid.geometry();
   const double vx = 5.0;
   const BoxM footprint{1.2, 1.5, 1.8, 0.6};
-  for (int y = 0; y < g.height(); ++y) {
-    for (int x = 0; x < g.width(); ++x) {
-      const std::size_t i = g.StorageIndexOfLocal({x, y});
-      const Eigen::Vector2d c = g.CellCenterM(g.GlobalFromLocal({x, y}));
-      const bool in = c.x() >= footprint.x0_m && c.x() < footprint.x0_m + footprint.width_m &&
-                      c.y() >= footprint.y0_m && c.y() < footprint.y0_m + footprint.height_m;
-      l.Values(grid.ids().occupancy)[i] = in ? 0.95f : 0.02f;
-      l.Values(grid.ids().seen)[i] = 1.0f;
-      if (!in) continue;
-      l.Values(grid.ids().velocity_x_mps)[i] = static_cast<float>(vx);
-      l.Values(grid.ids().velocity_confidence)[i] = 1.0f;
-    }
-  }
+  HoldFootprint(grid, footprint, vx);
   // The next scan: the near side (the lowest row) hit where the body has moved, the rest of
   // the footprint behind it unknown, everything else free.
   const BoxM moved{footprint.x0_m + vx * kDtS, footprint.y0_m, footprint.width_m,
