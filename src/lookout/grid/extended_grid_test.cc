@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <utility>
@@ -939,6 +940,16 @@ TEST(FilterOptionsTest, ValidateNamesTheField) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("window_size_cells"), std::string::npos);
   }
+  options = {};
+  options.unobserved_mover_speed_mps = std::numeric_limits<double>::quiet_NaN();
+  try {
+    options.Validate("test");
+    FAIL() << "NaN speed accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unobserved_mover_speed_mps"), std::string::npos);
+  }
+  options.unobserved_mover_speed_mps = -1.0;
+  EXPECT_THROW(options.Validate(), InputError);
 }
 
 }  // namespace
