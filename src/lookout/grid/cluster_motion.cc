@@ -1,5 +1,7 @@
 #include "lookout/grid/cluster_motion.h"
 
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -135,29 +137,19 @@ std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
 // scan (the aperture problem; a wall's hits sliding along it as the ego drives), only its motion
 // across it (a car's front face).
 bool SlidesAlongItsLine(const HitBody& body, double dx, double dy) {
-  const auto n = static_cast<double>(body.cells.size());
-  double mx = 0.0, my = 0.0;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const CellIndex& c : body.cells) mean += Eigen::Vector2d(c.ix, c.iy);
+  mean /= static_cast<double>(body.cells.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
   for (const CellIndex& c : body.cells) {
-    mx += c.ix;
-    my += c.iy;
+    const Eigen::Vector2d d = Eigen::Vector2d(c.ix, c.iy) - mean;
+    scatter += d * d.transpose();
   }
-  mx /= n;
-  my /= n;
-  double sxx = 0.0, syy = 0.0, sxy = 0.0;
-  for (const CellIndex& c : body.cells) {
-    sxx += (c.ix - mx) * (c.ix - mx);
-    syy += (c.iy - my) * (c.iy - my);
-    sxy += (c.ix - mx) * (c.iy - my);
-  }
-  sxx /= n;
-  syy /= n;
-  sxy /= n;
-  // The smaller eigenvalue of the scatter: the spread across the principal axis.
-  const double half_trace = 0.5 * (sxx + syy);
-  const double root = std::sqrt(std::max(0.0, half_trace * half_trace - (sxx * syy - sxy * sxy)));
-  if (half_trace - root >= 0.25) return false;  // (1/2 cell)^2
-  const double axis = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-  return std::abs(dx * std::cos(axis) + dy * std::sin(axis)) > 0.5;
+  scatter /= static_cast<double>(body.cells.size());
+  // Eigenvalues ascending: the first is the spread across the principal axis.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
+  if (eigen.eigenvalues()(0) >= 0.25) return false;  // (1/2 cell)^2
+  return std::abs(eigen.eigenvectors().col(1).dot(Eigen::Vector2d(dx, dy))) > 0.5;
 }
 
 // The share of `body`'s hits on cells the grid believed free (O < 1/2).
