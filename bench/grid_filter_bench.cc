@@ -186,17 +186,21 @@ void TimeJunctionUpdates(benchmark::State& state, const app::GridCycleInput& inp
   one.execute([&] { reference.Update(input.z, input.dt_s); });
   tbb::task_arena arena(static_cast<int>(state.range(0)));
   ExtendedGrid grid = input.before;
+  double motion_ms = 0.0;
   for (auto _ : state) {
     state.PauseTiming();
     grid = input.before;
     state.ResumeTiming();
     arena.execute([&] { TimedSimJunctionUpdate(grid, input); });
+    motion_ms += grid.last_stats().motion_ms;
   }
   if (AllLayers(grid) != AllLayers(reference)) {
     state.SkipWithError("the output differs from the one-thread output");
     return;
   }
   Counters(state, grid);
+  // The part of the update the literal reference computes too (BM_ReferenceUpdateSimJunction).
+  state.counters["motion_ms"] = motion_ms / static_cast<double>(state.iterations());
 }
 
 void BM_ExtendedGridUpdateSimJunction(benchmark::State& state) {
@@ -245,14 +249,18 @@ void BM_ClusterMotionSimJunction(benchmark::State& state) {
 }
 BENCHMARK(BM_ClusterMotionSimJunction)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The literal reference of the same stages as the fast path's motion_ms, on the same scan pair
+// (its preparation timed, as in the fast path).
 void BM_ReferenceUpdateSimJunction(benchmark::State& state) {
   const app::GridCycleInput& input = SimJunction();
   GridLayers layers = input.before.layers();
   for (auto _ : state) {
     state.PauseTiming();
     layers = input.before.layers();
+    ScanFlow flow = input.before.scan_flow();
     state.ResumeTiming();
-    ReferenceUpdate(layers, input.before.ids(), input.z, input.dt_s, input.before.options());
+    flow.Prepare(input.z);
+    ReferenceUpdate(layers, input.before.ids(), input.z, input.dt_s, input.before.options(), &flow);
   }
   ExtendedGrid after = input.before;
   after.Update(input.z, input.dt_s);

@@ -418,6 +418,8 @@ int Bench(const std::string& json_path) {
   const json figures = {{"sim.realtime_factor", SimRealtimeFactor()},
                         {"grid.cycle_ms_median", grid.cycle_ms_median},
                         {"grid.reference_speedup", grid.reference_speedup},
+                        {"grid.motion_ms_median", grid.motion_ms_median},
+                        {"grid.reference_ms_median", grid.reference_ms_median},
                         {"tracking.mht_step_ms_median", MeasureMhtStepMs(30, 10, 10, 3, 51)},
                         {"risk.step_ms_median", MeasureRiskStepMs(30, 1000, 21)},
                         {"pipeline.realtime_factor", PipelineRealtimeFactor()}};

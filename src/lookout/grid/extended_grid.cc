@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cassert>
+#include <chrono>
 #include <span>
 
 #include "lookout/grid/association_prediction.h"
@@ -13,6 +14,15 @@
 #include "lookout/grid/velocity_update.h"
 
 namespace lookout::grid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsBetween(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
+
+}  // namespace
 
 ExtendedGrid::ExtendedGrid(const ScrollingGridGeometry& geometry, const FilterOptions& options)
     : options_(options), layers_(geometry), flow_(options.scan_flow) {
@@ -27,6 +37,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   assert(dt_s > 0.0);
   const WindowIndexer indexer(geometry());
 
+  const Clock::time_point start = Clock::now();
   flow_.Prepare(z);
   Associations associations =
       PredictAssociations(layers_, ids_, indexer, z, dt_s, options_, &flow_);              // 2
@@ -49,10 +60,12 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
   const ClusterStageOutput found = ApplyClusterMotion(
       layers_, ids_, z, flow_, dt_s, options_.known_confidence, options_.cluster_motion);
+  const Clock::time_point motion_done = Clock::now();
   // Beyond the paper: the bodies going into a shadow remembered, those in one carried whole
   // (hidden_bodies.h).
   hidden_.Update(layers_, ids_, z, dt_s, found, options_.cluster_motion.staying_min_hit_scans,
                  options_.hidden_bodies);
+  const Clock::time_point hidden_done = Clock::now();
   std::array<std::span<float>, kGridClassCount> classes;
   for (std::size_t c = 0; c < kGridClassCount; ++c) classes[c] = layers_.Values(ids_.class_pmf[c]);
   UpdateClasses(associations, targets, cells, geometry(), indexer, options_,
@@ -64,7 +77,11 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   stereo_.clear();
   ClearSourceMap(associations, workspace_);
   flow_.Remember(z);
+  const Clock::time_point done = Clock::now();
 
+  stats_.motion_ms = MsBetween(start, motion_done);
+  stats_.hidden_bodies_ms = MsBetween(motion_done, hidden_done);
+  stats_.classes_ms = MsBetween(hidden_done, done);
   stats_.sources = associations.SourceCount();
   stats_.associations = associations.EntryCount();
   stats_.updated_cells = cells.size();
