@@ -132,20 +132,20 @@ std::optional<double> VacatedShare(const HitMaps& older, const HitBody& body,
   return static_cast<double>(vacated) / left;
 }
 
-// Whether `body`'s hits lie on one line (their spread across it under half a cell) and (dx, dy)
+// Whether `cells` (hits) lie on one line (their spread across it under half a cell) and (dx, dy)
 // moves them along it by more than half a cell: a line's motion along itself is not in the
 // scan (the aperture problem; a wall's hits sliding along it as the ego drives), only its motion
 // across it (a car's front face).
-bool SlidesAlongItsLine(const HitBody& body, double dx, double dy) {
+bool SlidesAlongItsLine(std::span<const CellIndex> cells, double dx, double dy) {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const CellIndex& c : body.cells) mean += Eigen::Vector2d(c.ix, c.iy);
-  mean /= static_cast<double>(body.cells.size());
+  for (const CellIndex& c : cells) mean += Eigen::Vector2d(c.ix, c.iy);
+  mean /= static_cast<double>(cells.size());
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const CellIndex& c : body.cells) {
+  for (const CellIndex& c : cells) {
     const Eigen::Vector2d d = Eigen::Vector2d(c.ix, c.iy) - mean;
     scatter += d * d.transpose();
   }
-  scatter /= static_cast<double>(body.cells.size());
+  scatter /= static_cast<double>(cells.size());
   // Eigenvalues ascending: the first is the spread across the principal axis.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
   if (eigen.eigenvalues()(0) >= 0.25) return false;  // (1/2 cell)^2
@@ -160,6 +160,54 @@ double ArrivedShare(const ScrollingGridGeometry& g, const HitBody& body,
     if (occupancy[g.StorageIndexOfLocal(c)] < 0.5f) ++arrived;
   }
   return static_cast<double>(arrived) / static_cast<double>(body.cells.size());
+}
+
+// ClusterMotionOptions::sides: the body of this scan's hits 8-connected to `cells` (a cluster
+// measured moving by m) through hits no cluster holds, within the cluster's band across its
+// motion (a cell either side), at most side_max_cells behind its front and each hit for fewer
+// than `wall_scans` scans (their role becomes kAttached: the body's); of these, the cells behind
+// the cluster's rear (its trailing side; the hits beside it are another body's as often as its
+// own: a walker's neighbour, a cyclist's).
+template <typename HitNow>
+std::vector<std::size_t> TrailingSide(const ScrollingGridGeometry& g,
+                                      std::span<const std::size_t> cells, const ClusterMotion& m,
+                                      const HitNow& hit_now, std::span<const float> hit_scans,
+                                      double wall_scans, const ClusterMotionOptions& options,
+                                      std::vector<std::uint8_t>& role) {
+  const double length = std::hypot(m.dx_cells, m.dy_cells);
+  const double ux = m.dx_cells / length, uy = m.dy_cells / length;
+  const auto along = [&](const CellIndex& c) { return c.ix * ux + c.iy * uy; };
+  const auto across = [&](const CellIndex& c) { return c.iy * ux - c.ix * uy; };
+  double front = -std::numeric_limits<double>::infinity(), rear = -front;
+  double lo = rear, hi = front;
+  std::vector<CellIndex> queue;
+  for (const std::size_t cell : cells) {
+    const CellIndex c = g.LocalFromGlobal(g.GlobalFromStorage(cell));
+    front = std::max(front, along(c));
+    rear = std::min(rear, along(c));
+    lo = std::min(lo, across(c));
+    hi = std::max(hi, across(c));
+    queue.push_back(c);
+  }
+  std::vector<std::size_t> trailing;
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const CellIndex c = queue[q];
+    for (int y = std::max(0, c.iy - 1); y <= std::min(g.height() - 1, c.iy + 1); ++y) {
+      for (int x = std::max(0, c.ix - 1); x <= std::min(g.width() - 1, c.ix + 1); ++x) {
+        const std::size_t s = g.StorageIndexOfLocal({x, y});
+        const CellIndex n{x, y};
+        if (role[s] != kFree || !hit_now(s) || across(n) < lo - 1.0 || across(n) > hi + 1.0 ||
+            along(n) < front - options.side_max_cells ||
+            static_cast<double>(hit_scans[s]) >= wall_scans) {
+          continue;
+        }
+        role[s] = kAttached;
+        if (along(n) < rear) trailing.push_back(s);
+        queue.push_back(n);
+      }
+    }
+  }
+  return trailing;
 }
 
 // The still bodies of ClusterMotionOptions::still_bodies, among the cells `role` leaves free.
@@ -205,7 +253,7 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
       m = MeasureClusterMotion(flow.short_pair(), body.cells, {0, 0}, options.search_half_cells,
                                options);
       if (!far_enough(m, options.search_half_cells) ||
-          SlidesAlongItsLine(body, m.dx_cells, m.dy_cells)) {
+          SlidesAlongItsLine(body.cells, m.dx_cells, m.dy_cells)) {
         continue;
       }
       baseline = &flow.short_pair();
@@ -271,6 +319,10 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              "birth_min_cells", "must be finite and >= 0");
   RequireClusterMotionOption(staying_min_hit_scans >= 0, source, "staying_min_hit_scans",
                              "must be >= 0");
+  RequireClusterMotionOption(std::isfinite(side_max_cells) && side_max_cells >= 0.0, source,
+                             "side_max_cells", "must be finite and >= 0");
+  RequireClusterMotionOption(std::isfinite(side_min_disagreement) && side_min_disagreement >= 0.0,
+                             source, "side_min_disagreement", "must be finite and >= 0");
   RequireClusterMotionOption(min_hits >= 1, source, "min_hits", "must be >= 1");
   RequireClusterMotionOption(WithinUnit(min_matched_share), source, "min_matched_share",
                              "must be in [0, 1]");
@@ -412,7 +464,8 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     int half = options.search_half_cells;
     const bool slow = std::max(std::abs(px), std::abs(py)) <
                       static_cast<double>(flow.options().long_lag_below_cells);
-    if (slow && flow.long_pair() != nullptr) {
+    const bool long_baseline = slow && flow.long_pair() != nullptr;
+    if (long_baseline) {
       maps = flow.long_pair();
       per_cycle = flow.long_lag_scale();
       half = 2 * options.search_half_cells;
@@ -452,6 +505,21 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
       }
       vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
       vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
+    }
+    // A slow body's trailing side (ClusterMotionOptions::sides): a body whose own hits say how
+    // it moves (not a line sliding along itself).
+    if (options.sides && long_baseline && moved_cells * per_cycle >= 1.0 &&
+        !SlidesAlongItsLine(hits, m.dx_cells, m.dy_cells)) {
+      const double speed = std::hypot(body_vx, body_vy);
+      for (const std::size_t cell :
+           TrailingSide(g, cluster.cells, m, hit_now, hit_scans, wall_scans, options, role)) {
+        const double ex = static_cast<double>(vx[cell]) - body_vx;
+        const double ey = static_cast<double>(vy[cell]) - body_vy;
+        if (std::hypot(ex, ey) <= options.side_min_disagreement * speed) continue;
+        vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
+        vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
+        confidence[cell] = std::max(confidence[cell], static_cast<float>(known_confidence));
+      }
     }
     for (const std::size_t cell : attached) {
       if (born) BearHit(cell, z, occupancy, seen);

@@ -39,6 +39,8 @@
 //     known_confidence) takes v_body and that confidence, so the next cycle moves it with the
 //     body; and, when the body moved at least birth_min_cells a cycle, the occupancy of a hit on
 //     unknown space (ClusterMotionOptions::births);
+//   - for a slow body moving a cell a cycle or more, its trailing side, the hits behind it that
+//     no cluster holds (ClusterMotionOptions::sides);
 //   - then the still bodies (ClusterMotionOptions::still_bodies), which no cluster holds.
 //
 // Deterministic: clusters in window order, one thread.
@@ -95,6 +97,23 @@ struct ClusterMotionOptions {
   // 0: every such cell, as before.
   int staying_min_hit_scans = 12;
   double birth_min_cells = 1.0;
+  // A slow body's trailing side (docs/grid.md, "A slow car's side"): a car's side seen at a
+  // grazing angle slides along itself, hit in some scans and seen through in others, and eq. 14
+  // reads its cells' motion along it from whatever the windows give (the crossing group's 3 m/s
+  // car: 0.6 to 11 m/s from one cycle to the next); their confidence stays under the clusters'
+  // threshold, so the body's cluster holds its front and not the rear of its side. A slow body
+  // (measured over the long baseline) covers a cell of its side for many cycles (19 for a 4.5 m
+  // car at 3 m/s), a fast one for a few, which the windows follow. So for a body measured over
+  // the long baseline moving a cell a cycle or more, whose hits are not one line sliding along
+  // itself, this scan's hits connected to its cluster through hits no cluster holds, within the
+  // cluster's band across its motion (a cell either side), behind its rear, at most
+  // side_max_cells behind its front and hit for fewer scans than a wall (the count above), take
+  // the body's velocity as its cells do (blend), and at least the known confidence: where they
+  // read it within side_min_disagreement of its speed, they keep their own (the body's
+  // measurement has its own error: one cycle's share of a whole-cell match).
+  bool sides = true;
+  double side_max_cells = 40.0;  // 6 m at 0.15 m: a car's length and more
+  double side_min_disagreement = 0.3;
   int min_hits = 4;
   double min_matched_share = 0.6;
   double ambiguity_radius_cells = 1.5;

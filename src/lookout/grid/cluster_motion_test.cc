@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "lookout/core/input_error.h"
@@ -115,6 +116,12 @@ TEST(ClusterMotionOptionsTest, ValidateNamesTheField) {
   }
   o = {};
   o.min_link = 1.0;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.side_max_cells = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.side_min_disagreement = -0.1;
   EXPECT_THROW(o.Validate(), InputError);
 }
 
@@ -270,6 +277,78 @@ TEST(ApplyClusterMotionTest, AFastCarsSideHitLongerThanTheCountIsNoWall) {
   }
   ApplyClusterMotion(long_hit.layers, long_hit.ids, scans.z, scans.flow, kClusterDtS, 0.25, {});
   for (int x = 12; x < 32; ++x) EXPECT_EQ(long_hit.Vx(x, 20), -1.0f) << x;
+}
+
+// A slow car (1.5 cells a cycle towards -x, 2.8 m/s) seen from the side: its front face, a
+// column of 12 cells, and a side of 21 cells along y = 20, hit in every scan. The cluster holds
+// the face and the side's first 8 cells, tracked at -2.8 m/s; the side's rear 13 cells read
+// -0.5 m/s with a confidence under the clusters' (the aperture problem: a side slides along
+// itself) and have been hit for 3 scans. The long pair (six scans) measures the body 9 cells on.
+struct SlowCarScene {
+  HandMadeFilterState state;
+  ScanFlow flow;
+  MeasurementGrid z;
+  std::vector<CellIndex> trailing;
+
+  static int FaceX(int k) { return 19 - static_cast<int>(std::lround(1.5 * k)); }
+  static std::vector<CellIndex> CarAt(int face_x) {
+    std::vector<CellIndex> hits;
+    for (int y = 21; y <= 32; ++y) hits.push_back({face_x, y});
+    for (int x = face_x + 1; x <= face_x + 21; ++x) hits.push_back({x, 20});
+    return hits;
+  }
+
+  explicit SlowCarScene(float trailing_hit_scans = 3.0f, float trailing_vx = -0.5f) {
+    const ScrollingGridGeometry& g = state.layers.geometry();
+    const int lag = ScanFlowOptions{}.long_lag_scans;
+    for (int k = 0; k < lag; ++k) {
+      const MeasurementGrid older = HitsMeasurement(g, CarAt(FaceX(k)), (k + 1) * kClusterDtNs);
+      flow.Prepare(older);
+      flow.Remember(older);
+    }
+    const int face = FaceX(lag);
+    z = HitsMeasurement(g, CarAt(face), (lag + 1) * kClusterDtNs);
+    flow.Prepare(z);
+    for (const CellIndex& c : CarAt(face)) {
+      if (c.iy == 20 && c.ix > face + 8) {
+        state.Set(c.ix, c.iy, 0.9f, trailing_vx, 0.1f);
+        state.layers.Values(state.ids.hit_scans)[g.StorageIndexOfLocal(c)] = trailing_hit_scans;
+        trailing.push_back(c);
+      } else {
+        state.Set(c.ix, c.iy, 0.9f, -2.8f, 0.6f);
+      }
+    }
+  }
+};
+
+TEST(ApplyClusterMotionTest, ASlowCarsTrailingSideTakesTheBodysVelocity) {
+  SlowCarScene car;
+  ASSERT_NE(car.flow.long_pair(), nullptr);
+  ApplyClusterMotion(car.state.layers, car.state.ids, car.z, car.flow, kClusterDtS, 0.25, {});
+  // Half way from -0.5 m/s to the body's -2.8, and a tracked cell's confidence: the next cycle's
+  // cluster holds them.
+  ASSERT_EQ(car.trailing.size(), 13u);
+  for (const CellIndex& c : car.trailing) {
+    EXPECT_NEAR(car.state.Vx(c.ix, c.iy), -1.65f, 0.15f) << c.ix;
+    EXPECT_FLOAT_EQ(car.state.Confidence(c.ix, c.iy), 0.25f) << c.ix;
+  }
+  // Without the rule the side keeps its reading.
+  SlowCarScene off;
+  ClusterMotionOptions no_sides;
+  no_sides.sides = false;
+  ApplyClusterMotion(off.state.layers, off.state.ids, off.z, off.flow, kClusterDtS, 0.25, no_sides);
+  for (const CellIndex& c : off.trailing) EXPECT_EQ(off.state.Vx(c.ix, c.iy), -0.5f) << c.ix;
+  // Hit where they are for longer than the car takes to pass: a wall's cells, left alone.
+  SlowCarScene wall(/*trailing_hit_scans=*/40.0f);
+  ApplyClusterMotion(wall.state.layers, wall.state.ids, wall.z, wall.flow, kClusterDtS, 0.25, {});
+  for (const CellIndex& c : wall.trailing) EXPECT_EQ(wall.state.Vx(c.ix, c.iy), -0.5f) << c.ix;
+  // Reading the body's motion within side_min_disagreement of its speed: their own kept.
+  SlowCarScene agreeing(3.0f, /*trailing_vx=*/-2.5f);
+  ApplyClusterMotion(agreeing.state.layers, agreeing.state.ids, agreeing.z, agreeing.flow,
+                     kClusterDtS, 0.25, {});
+  for (const CellIndex& c : agreeing.trailing) {
+    EXPECT_EQ(agreeing.state.Vx(c.ix, c.iy), -2.5f) << c.ix;
+  }
 }
 
 TEST(CountHitScansTest, HitsCountUpFreeResetsUnobservedKeeps) {
