@@ -234,8 +234,14 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
   for (const std::size_t first : z.touched) {
     if (role[first] != kFree || !member(first)) continue;
     GrowBody(g, g.LocalFromGlobal(g.GlobalFromStorage(first)), member, role, body);
+    // A body larger than a walker is measured only when most of it lies where the grid
+    // believed free space (a vehicle new in view): a large body on cells the grid holds is
+    // structure it has seen, and measuring every wall twice a cycle costs 1.8 ms.
     if (static_cast<int>(body.cells.size()) < options.min_hits ||
-        body.Extent() > options.still_max_extent_cells) {
+        body.Extent() > options.new_body_max_extent_cells ||
+        (body.Extent() > options.still_max_extent_cells &&
+         !(options.births &&
+           ArrivedShare(g, body, occupancy) >= options.still_min_arrived_share))) {
       continue;
     }
     const auto far_enough = [&](const ClusterMotion& m, int half) {
@@ -244,16 +250,15 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
              std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) <= half - 1;
     };
     // The long pair holds a walker's displacement; a body faster than its search (1 cell a
-    // cycle over 6 scans: a 3 m/s car's face moves 1.6), the one-cycle pair, where it moves
+    // cycle over 6 scans: a 3 m/s car's face moves 1.6), the one-cycle pair with the same
+    // search (a 5 m/s truck moves 2.7 cells a cycle), where it moves
     // still_min_displacement_cells or more, but not along a line of hits.
     const HitMaps* baseline = older;
     double per_cycle = flow.long_lag_scale();
     ClusterMotion m = MeasureClusterMotion(*older, body.cells, {0, 0}, search_half, options);
     if (!m.measured || std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
-      m = MeasureClusterMotion(flow.short_pair(), body.cells, {0, 0}, options.search_half_cells,
-                               options);
-      if (!far_enough(m, options.search_half_cells) ||
-          SlidesAlongItsLine(body.cells, m.dx_cells, m.dy_cells)) {
+      m = MeasureClusterMotion(flow.short_pair(), body.cells, {0, 0}, search_half, options);
+      if (!far_enough(m, search_half) || SlidesAlongItsLine(body.cells, m.dx_cells, m.dy_cells)) {
         continue;
       }
       baseline = &flow.short_pair();
@@ -330,6 +335,8 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
                              source, "ambiguity_radius_cells", "must be finite and >= 0");
   RequireClusterMotionOption(WithinUnit(ambiguity_share), source, "ambiguity_share",
                              "must be in [0, 1]");
+  RequireClusterMotionOption(new_body_max_extent_cells >= 1, source, "new_body_max_extent_cells",
+                             "must be >= 1");
   RequireClusterMotionOption(still_max_extent_cells >= 1, source, "still_max_extent_cells",
                              "must be >= 1");
   RequireClusterMotionOption(

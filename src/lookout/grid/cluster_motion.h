@@ -127,20 +127,23 @@ struct ClusterMotionOptions {
   double min_link = 0.05;
   int min_cells = 3;
 
-  // Still bodies (docs/grid.md, "A walker held still"): a small body the grid believes still
-  // but the long baseline sees moving. A walker's 0.6 cell a cycle is staying to the one-cycle
-  // pair, so a walker newly in view (or in view before six scans exist) is read still, its
-  // stillness becomes trusted, and a trusted cell never asks the scan pair again; nor is it a
+  // Still bodies (docs/grid.md, "A walker held still", "A truck read still"): a body the grid
+  // believes still but the scan pair sees moving. A walker's 0.6 cell a cycle is staying to the
+  // one-cycle pair, so a walker newly in view (or in view before six scans exist) is read still,
+  // its stillness becomes trusted, and a trusted cell never asks the scan pair again; nor is it a
   // dynamic cell any cluster above holds. Each 8-connected body of cells this scan hits, above
   // min_occupancy, that no dynamic cluster holds, is measured against the long pair's older
   // scan (MeasureClusterMotion, +-2 search_half_cells around staying) when it is at most
-  // still_max_extent_cells across (a walker, a pushchair, a cyclist, a pole; not a wall); it
-  // moved when
+  // still_max_extent_cells across (a walker, a pushchair, a cyclist, a pole; not a wall), or
+  // at most new_body_max_extent_cells with at least still_min_arrived_share of its hits on
+  // cells the grid believed free (a vehicle new in view, its face and the side the scan sees;
+  // births on); it moved when
   //   - the displacement is at least still_min_displacement_cells over the baseline, and not at
   //     the edge of the search (there the best is the search's edge, not the body's: a car's
   //     side sliding along itself aliases to it); when the long pair finds none within its
   //     search (+-6 cells over six scans: a body faster than a cell a cycle, a 3 m/s car's face
-  //     at 1.6), the one-cycle pair is asked the same (+-search_half_cells), unless the body's
+  //     at 1.6), the one-cycle pair is asked the same (+-2 search_half_cells: intersafe-fig8's
+  //     5 m/s truck moves 2.7 cells a cycle), unless the body's
   //     hits are one line and the displacement runs along it (a line's motion along itself is
   //     not in the scan: a wall's hits sliding along it as the ego drives). Without it the
   //     crossing group's car, its face new each scan and its side read still, was measured by
@@ -162,6 +165,11 @@ struct ClusterMotionOptions {
   // hits are born as the attached ones above.
   bool still_bodies = true;
   int still_max_extent_cells = 8;  // 1.2 m at 0.15 m
+  // 12 m at 0.15 m. Until 2026-12-05 still_max_extent_cells bounded every body: intersafe-fig8's
+  // truck, its face 17 cells across and its side behind, was never measured, its face never
+  // born and its side read still for its whole 3 s in view (docs/grid.md, "A truck read
+  // still").
+  int new_body_max_extent_cells = 80;
   double still_min_displacement_cells = 1.5;
   double still_min_vacated_share = 0.5;
   double still_believed_share = 0.5;

@@ -595,6 +595,50 @@ TEST(ApplyClusterMotionTest, AFaceTooFastForTheLongPairIsMeasuredOverOneCycle) {
   }
 }
 
+// A truck seen for the first time (intersafe-fig8's, 5.6 m/s towards -x): its face, 17 cells
+// across, and 20 cells of its side, three cells further each cycle, on cells the grid believes
+// free and still (occupancy 0.045: hit once); the long pair's older scan (18 cells back) lies
+// beyond its search. The one-cycle pair measures the body whole: it moves and is born.
+std::vector<CellIndex> TruckAt(int face_x) {
+  std::vector<CellIndex> hits;
+  for (int y = 20; y <= 36; ++y) hits.push_back({face_x, y});
+  for (int x = face_x + 1; x <= face_x + 20; ++x) hits.push_back({x, 20});
+  return hits;
+}
+
+TEST(ApplyClusterMotionTest, ATruckNewInViewIsMovedAndBornWhole) {
+  for (const int max_extent : {80, 8}) {
+    SCOPED_TRACE(max_extent);
+    HandMadeFilterState state;
+    const ScrollingGridGeometry& g = state.layers.geometry();
+    ScanFlow flow;
+    const int lag = ScanFlowOptions{}.long_lag_scans;
+    const auto face_x = [](int k) { return 44 - 3 * k; };
+    for (int k = 0; k < lag; ++k) {
+      const MeasurementGrid older = HitsMeasurement(g, TruckAt(face_x(k)), (k + 1) * kClusterDtNs);
+      flow.Prepare(older);
+      flow.Remember(older);
+    }
+    const std::vector<CellIndex> now = TruckAt(face_x(lag));
+    const MeasurementGrid z = HitsMeasurement(g, now, (lag + 1) * kClusterDtNs);
+    flow.Prepare(z);
+    for (const CellIndex& c : now) state.Set(c.ix, c.iy, 0.045f, 0.0f, 0.9f);
+    ClusterMotionOptions options;
+    options.new_body_max_extent_cells = max_extent;
+    ApplyClusterMotion(state.layers, state.ids, z, flow, kClusterDtS, 0.25, options);
+    for (const CellIndex& c : now) {
+      const float occupancy = state.layers.Values(state.ids.occupancy)[g.StorageIndexOfLocal(c)];
+      if (max_extent == 80) {
+        EXPECT_NEAR(state.Vx(c.ix, c.iy), -5.625f, 0.2f) << c.ix << "," << c.iy;
+        EXPECT_FLOAT_EQ(occupancy, 0.7f) << c.ix << "," << c.iy;
+      } else {  // a walker's size at most: the truck is left as it was
+        EXPECT_EQ(state.Vx(c.ix, c.iy), 0.0f) << c.ix << "," << c.iy;
+        EXPECT_FLOAT_EQ(occupancy, 0.045f) << c.ix << "," << c.iy;
+      }
+    }
+  }
+}
+
 // A body measured moving two cells a cycle: its front, hit for the first time on cells the grid
 // saw free, is born with it; under birth_min_cells (a walker's pace), it is not.
 TEST(ApplyClusterMotionTest, AFastBodysNewFaceIsBorn) {
