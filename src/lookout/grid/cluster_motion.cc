@@ -329,6 +329,11 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
   RequireClusterMotionOption(std::isfinite(side_min_disagreement) && side_min_disagreement >= 0.0,
                              source, "side_min_disagreement", "must be finite and >= 0");
   RequireClusterMotionOption(min_hits >= 1, source, "min_hits", "must be >= 1");
+  RequireClusterMotionOption(small_body_max_hits >= 0, source, "small_body_max_hits",
+                             "must be >= 0");
+  RequireClusterMotionOption(
+      std::isfinite(small_body_max_change_mps) && small_body_max_change_mps >= 0.0, source,
+      "small_body_max_change_mps", "must be finite and >= 0");
   RequireClusterMotionOption(WithinUnit(min_matched_share), source, "min_matched_share",
                              "must be in [0, 1]");
   RequireClusterMotionOption(std::isfinite(ambiguity_radius_cells) && ambiguity_radius_cells >= 0.0,
@@ -483,6 +488,13 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     if (!m.measured) continue;
     const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
     const double body_vy = m.dy_cells * per_cycle / cells_per_mps;
+    // A few hits over the long baseline find other bodies' older hits in its search
+    // (ClusterMotionOptions::small_body_max_hits).
+    if (long_baseline && static_cast<int>(hits.size()) < options.small_body_max_hits &&
+        std::hypot(body_vx - px / cells_per_mps, body_vy - py / cells_per_mps) >
+            options.small_body_max_change_mps) {
+      continue;
+    }
     const double moved_cells = std::hypot(m.dx_cells, m.dy_cells);  // over the baseline
     const bool moved = moved_cells >= 1.0;
     const bool born = options.births && moved_cells * per_cycle >= options.birth_min_cells;

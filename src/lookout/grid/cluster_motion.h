@@ -31,6 +31,8 @@
 //     walker, hit scan after scan, is not attached);
 //   - the baseline: one cycle, or the scan pair's long baseline (scan_flow.h) when the cluster's
 //     predicted displacement is under its long_lag_below_cells a cycle, scaled by the stamps;
+//   - not measured: a small body over the long baseline whose measurement changes its
+//     predicted velocity by more than small_body_max_change_mps;
 //   - measured: each cluster cell's velocity <- (1 - blend) V + blend v_body, except a cell this
 //     scan hits where the baseline's scan hit too although the body moved a cell or more since,
 //     and hit staying_min_hit_scans scans in a row (staying explains it as well: a wall cell
@@ -115,6 +117,14 @@ struct ClusterMotionOptions {
   double side_max_cells = 40.0;  // 6 m at 0.15 m: a car's length and more
   double side_min_disagreement = 0.3;
   int min_hits = 4;
+  // A small body measured over the long baseline (fewer than small_body_max_hits hits: a
+  // walker's arc is 4-7) is measured only when it changes the velocity its cells predicted by
+  // at most small_body_max_change_mps (docs/grid.md, "A few hits among other walkers"): in a
+  // crowd a few hits find the other walkers' older hits within the +-6-cell search, all of them
+  // matched, at 2-3.5 m/s in another direction (known fault 8), and a walker changes her
+  // velocity by less than that within the baseline's half second. 0 hits: every body measured.
+  int small_body_max_hits = 8;
+  double small_body_max_change_mps = 1.0;
   double min_matched_share = 0.6;
   double ambiguity_radius_cells = 1.5;
   double ambiguity_share = 0.8;

@@ -145,6 +145,9 @@ struct HandMadeFilterState {
   float Vx(int x, int y) const {
     return layers.Values(ids.velocity_x_mps)[layers.geometry().StorageIndexOfLocal({x, y})];
   }
+  float Vy(int x, int y) const {
+    return layers.Values(ids.velocity_y_mps)[layers.geometry().StorageIndexOfLocal({x, y})];
+  }
   float Confidence(int x, int y) const {
     return layers.Values(ids.velocity_confidence)[layers.geometry().StorageIndexOfLocal({x, y})];
   }
@@ -173,6 +176,21 @@ struct TwoScans {
     flow.Prepare(z);
   }
 };
+
+// Long_lag_scans + 1 scans a cycle apart into `flow`, scan k hitting hits_at(k); returns the
+// last one's measurement, `flow` prepared for it (the long pair its first scan).
+template <typename HitsAt>
+MeasurementGrid FeedScans(const ScrollingGridGeometry& g, ScanFlow& flow, const HitsAt& hits_at) {
+  const int lag = ScanFlowOptions{}.long_lag_scans;
+  for (int k = 0; k < lag; ++k) {
+    const MeasurementGrid older = HitsMeasurement(g, hits_at(k), (k + 1) * kClusterDtNs);
+    flow.Prepare(older);
+    flow.Remember(older);
+  }
+  MeasurementGrid z = HitsMeasurement(g, hits_at(lag), (lag + 1) * kClusterDtNs);
+  flow.Prepare(z);
+  return z;
+}
 
 TEST(ApplyClusterMotionTest, TheBodyTakesItsMeasuredVelocityTheWallBesideItKeepsItsOwn) {
   HandMadeFilterState state;
@@ -300,15 +318,8 @@ struct SlowCarScene {
 
   explicit SlowCarScene(float trailing_hit_scans = 3.0f, float trailing_vx = -0.5f) {
     const ScrollingGridGeometry& g = state.layers.geometry();
-    const int lag = ScanFlowOptions{}.long_lag_scans;
-    for (int k = 0; k < lag; ++k) {
-      const MeasurementGrid older = HitsMeasurement(g, CarAt(FaceX(k)), (k + 1) * kClusterDtNs);
-      flow.Prepare(older);
-      flow.Remember(older);
-    }
-    const int face = FaceX(lag);
-    z = HitsMeasurement(g, CarAt(face), (lag + 1) * kClusterDtNs);
-    flow.Prepare(z);
+    z = FeedScans(g, flow, [](int k) { return CarAt(FaceX(k)); });
+    const int face = FaceX(ScanFlowOptions{}.long_lag_scans);
     for (const CellIndex& c : CarAt(face)) {
       if (c.iy == 20 && c.ix > face + 8) {
         state.Set(c.ix, c.iy, 0.9f, trailing_vx, 0.1f);
@@ -556,22 +567,11 @@ struct NewFaceScene {
     return hits;
   }
   explicit NewFaceScene(bool sliding) {
-    const ScrollingGridGeometry& g = state.layers.geometry();
-    const int lag = ScanFlowOptions{}.long_lag_scans;
-    for (int k = 0; k < lag; ++k) {
-      const MeasurementGrid older = HitsMeasurement(g, HitsAt(k, sliding), (k + 1) * kClusterDtNs);
-      flow.Prepare(older);
-      flow.Remember(older);
-    }
-    hits_now = HitsAt(lag, sliding);
-    z = HitsMeasurement(g, hits_now, (lag + 1) * kClusterDtNs);
-    flow.Prepare(z);
+    z = FeedScans(state.layers.geometry(), flow, [&](int k) { return HitsAt(k, sliding); });
+    hits_now = HitsAt(ScanFlowOptions{}.long_lag_scans, sliding);
     for (const CellIndex& c : hits_now) state.Set(c.ix, c.iy, 0.045f, 0.0f, 0.9f);
   }
-  float Vy(const CellIndex& c) const {
-    const GridLayers& l = state.layers;
-    return l.Values(state.ids.velocity_y_mps)[l.geometry().StorageIndexOfLocal(c)];
-  }
+  float Vy(const CellIndex& c) const { return state.Vy(c.ix, c.iy); }
 };
 
 TEST(ApplyClusterMotionTest, AFaceTooFastForTheLongPairIsMeasuredOverOneCycle) {
@@ -595,6 +595,51 @@ TEST(ApplyClusterMotionTest, AFaceTooFastForTheLongPairIsMeasuredOverOneCycle) {
   }
 }
 
+// A walker's body of five hits, believed at 1 m/s along x (0.53 cells a cycle: measured over
+// the long pair, six scans). `older_shift`: where the long pair's older scan hit the same shape
+// (the body moved by minus it over six scans).
+struct SmallBodyScene {
+  HandMadeFilterState state;
+  ScanFlow flow;
+  MeasurementGrid z;
+  std::vector<CellIndex> body{{20, 20}, {21, 20}, {22, 20}, {20, 21}, {20, 22}};
+
+  explicit SmallBodyScene(const CellIndex& older_shift) {
+    // The older scans on the way from older_shift to here, the oldest at older_shift.
+    const int lag = ScanFlowOptions{}.long_lag_scans;
+    z = FeedScans(state.layers.geometry(), flow, [&](int k) {
+      return ShiftedCells(body, older_shift.ix * (lag - k) / lag, older_shift.iy * (lag - k) / lag);
+    });
+    for (const CellIndex& c : body) state.Set(c.ix, c.iy, 0.9f, 1.0f, 0.6f);
+  }
+  float Vy(const CellIndex& c) const { return state.Vy(c.ix, c.iy); }
+};
+
+TEST(ApplyClusterMotionTest, ASmallBodysMeasurementFarFromItsPredictionIsNotTaken) {
+  // Six cells along y over six scans (1.9 m/s across its believed motion: another walker's
+  // older hits): not taken; taken with the gate off.
+  SmallBodyScene jump(CellIndex{0, -6});
+  ASSERT_NE(jump.flow.long_pair(), nullptr);
+  ApplyClusterMotion(jump.state.layers, jump.state.ids, jump.z, jump.flow, kClusterDtS, 0.25, {});
+  for (const CellIndex& c : jump.body) {
+    EXPECT_EQ(jump.state.Vx(c.ix, c.iy), 1.0f) << c.ix << "," << c.iy;
+    EXPECT_EQ(jump.Vy(c), 0.0f) << c.ix << "," << c.iy;
+  }
+  SmallBodyScene ungated(CellIndex{0, -6});
+  ClusterMotionOptions no_gate;
+  no_gate.small_body_max_hits = 0;
+  ApplyClusterMotion(ungated.state.layers, ungated.state.ids, ungated.z, ungated.flow, kClusterDtS,
+                     0.25, no_gate);
+  for (const CellIndex& c : ungated.body) EXPECT_GT(ungated.Vy(c), 0.5f) << c.ix << "," << c.iy;
+  // Three cells along x (0.94 m/s, its belief within 0.1 m/s): taken.
+  SmallBodyScene walking(CellIndex{-3, 0});
+  ApplyClusterMotion(walking.state.layers, walking.state.ids, walking.z, walking.flow, kClusterDtS,
+                     0.25, {});
+  for (const CellIndex& c : walking.body) {
+    EXPECT_NEAR(walking.state.Vx(c.ix, c.iy), 0.97f, 0.05f) << c.ix << "," << c.iy;
+  }
+}
+
 // A truck seen for the first time (intersafe-fig8's, 5.6 m/s towards -x): its face, 17 cells
 // across, and 20 cells of its side, three cells further each cycle, on cells the grid believes
 // free and still (occupancy 0.045: hit once); the long pair's older scan (18 cells back) lies
@@ -612,16 +657,9 @@ TEST(ApplyClusterMotionTest, ATruckNewInViewIsMovedAndBornWhole) {
     HandMadeFilterState state;
     const ScrollingGridGeometry& g = state.layers.geometry();
     ScanFlow flow;
-    const int lag = ScanFlowOptions{}.long_lag_scans;
     const auto face_x = [](int k) { return 44 - 3 * k; };
-    for (int k = 0; k < lag; ++k) {
-      const MeasurementGrid older = HitsMeasurement(g, TruckAt(face_x(k)), (k + 1) * kClusterDtNs);
-      flow.Prepare(older);
-      flow.Remember(older);
-    }
-    const std::vector<CellIndex> now = TruckAt(face_x(lag));
-    const MeasurementGrid z = HitsMeasurement(g, now, (lag + 1) * kClusterDtNs);
-    flow.Prepare(z);
+    const MeasurementGrid z = FeedScans(g, flow, [&](int k) { return TruckAt(face_x(k)); });
+    const std::vector<CellIndex> now = TruckAt(face_x(ScanFlowOptions{}.long_lag_scans));
     for (const CellIndex& c : now) state.Set(c.ix, c.iy, 0.045f, 0.0f, 0.9f);
     ClusterMotionOptions options;
     options.new_body_max_extent_cells = max_extent;
