@@ -1,7 +1,3 @@
-#include <cstdio>
-#include <cstdlib>
-#include <cmath>
-#include <map>
 #include "lookout/app/grid_scoring.h"
 
 #include "lookout/app/stereo_class_evidence.h"
@@ -61,25 +57,6 @@ void GridScorer::Observe(const GridStage& stage, const sim::TruthFrame& truth_wo
   const sim::TruthRaster raster = sim::RasteriseTruth(truth, static_world_odom_, belief_.geometry);
   visibility_.Observe(truth, belief_.geometry);
   velocity_.AddFrame(belief_, raster);
-  if (std::getenv("VOWN")) {
-    static std::map<int, std::pair<double, long>> per;
-    static std::map<int, std::pair<double, long>> perf;
-    const auto allowed = visibility_.AfterFirstVisible(1.0, truth.stamp);
-    for (std::size_t i = 0; i < raster.owner.size(); ++i) {
-      const int o = raster.owner[i];
-      if (o < 0 || !raster.occupied[i] || belief_.occupancy[i] <= 0.5f || raster.velocity[i].norm() <= 0.5f || !allowed(o)) continue;
-      const double ex = double(belief_.velocity_x_mps[i]) - double(raster.velocity[i].x()), ey = double(belief_.velocity_y_mps[i]) - double(raster.velocity[i].y());
-      per[o].first += ex * ex + ey * ey; per[o].second += 1;
-      if (std::getenv("VOWNO") && o == std::atoi(std::getenv("VOWNO"))) { perf[0].first += ex * ex + ey * ey; perf[0].second += 1; perf[1].first += double(belief_.velocity_x_mps[i]); perf[2].first += double(belief_.velocity_y_mps[i]); perf[3].first += double(raster.velocity[i].x()); perf[4].first += double(raster.velocity[i].y()); 
-        if (std::getenv("VOWNC")) std::fprintf(stderr, "   c (%d,%d) O=%.2f v=(%.2f,%.2f) conf=%.2f err=%.2f\n", int(i) % belief_.geometry.width, int(i) / belief_.geometry.width, double(belief_.occupancy[i]), double(belief_.velocity_x_mps[i]), double(belief_.velocity_y_mps[i]), double(belief_.velocity_confidence[i]), std::sqrt(ex*ex+ey*ey)); }
-    }
-    if (std::getenv("VOWNO") && perf[0].second) { const double n = double(perf[0].second); std::fprintf(stderr, "VFRAME t=%.2f n=%ld rms=%.3f mean v=(%.2f,%.2f) truth (%.2f,%.2f)\n", ToSeconds(truth.stamp), perf[0].second, std::sqrt(perf[0].first / n), perf[1].first / n, perf[2].first / n, perf[3].first / n, perf[4].first / n); perf.clear(); }
-    if (std::getenv("VOWNT") && std::atof(std::getenv("VOWNT")) <= ToSeconds(truth.stamp) + 1e-6 && std::atof(std::getenv("VOWNT")) > ToSeconds(truth.stamp) - 0.05) {
-      double S = 0; long N = 0; for (auto& [o, v] : per) { S += v.first; N += v.second; }
-      for (auto& [o, v] : per) std::fprintf(stderr, "VOWN owner %d n=%ld rms=%.3f share=%.3f\n", o, v.second, std::sqrt(v.first / double(v.second)), v.first / S);
-      std::fprintf(stderr, "VOWN total n=%ld rms=%.3f\n", N, std::sqrt(S / double(N)));
-    }
-  }
   // The figure: velocities scored once an actor has been visible for a second, the
   // time any filter needs to learn a velocity from positions.
   velocity_after_1s_.AddFrame(belief_, raster, visibility_.AfterFirstVisible(1.0, truth.stamp));
