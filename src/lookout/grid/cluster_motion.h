@@ -153,9 +153,9 @@ struct ClusterMotionOptions {
   //     side sliding along itself aliases to it); when the long pair finds none within its
   //     search (+-6 cells over six scans: a body faster than a cell a cycle, a 3 m/s car's face
   //     at 1.6), the one-cycle pair is asked the same (+-2 search_half_cells: intersafe-fig8's
-  //     5 m/s truck moves 2.7 cells a cycle), unless the body's
-  //     hits are one line and the displacement runs along it (a line's motion along itself is
-  //     not in the scan: a wall's hits sliding along it as the ego drives). Without it the
+  //     5 m/s truck moves 2.7 cells a cycle), unless the body's hits are one line and the
+  //     displacement runs along it (a line's motion along itself is not in the scan: a wall's
+  //     hits sliding along it as the ego drives). Without it the
   //     crossing group's car, its face new each scan and its side read still, was measured by
   //     nothing for its first 1.5 s in view (docs/grid.md, "A face too fast for the long pair");
   //   - the body left where it was: of the older scan's hits around the body that this scan
