@@ -162,33 +162,50 @@ double ArrivedShare(const ScrollingGridGeometry& g, const HitBody& body,
   return static_cast<double>(arrived) / static_cast<double>(body.cells.size());
 }
 
+// A body's cells (window-local) projected on its displacement (dx, dy) and across it, cells:
+// how far it reaches along its motion (rear to front) and its band across.
+struct MotionExtent {
+  double ux = 0.0, uy = 0.0;  // unit along the motion
+  double rear = std::numeric_limits<double>::infinity();
+  double front = -std::numeric_limits<double>::infinity();
+  double lo = std::numeric_limits<double>::infinity();  // across
+  double hi = -std::numeric_limits<double>::infinity();
+  double Along(const CellIndex& c) const { return c.ix * ux + c.iy * uy; }
+  double Across(const CellIndex& c) const { return c.iy * ux - c.ix * uy; }
+};
+
+// Precondition: (dx, dy) is not zero.
+MotionExtent ExtentAlong(const ScrollingGridGeometry& g, std::span<const std::size_t> cells,
+                         double dx, double dy) {
+  MotionExtent e;
+  const double length = std::hypot(dx, dy);
+  e.ux = dx / length;
+  e.uy = dy / length;
+  for (const std::size_t cell : cells) {
+    const CellIndex c = g.LocalFromGlobal(g.GlobalFromStorage(cell));
+    e.rear = std::min(e.rear, e.Along(c));
+    e.front = std::max(e.front, e.Along(c));
+    e.lo = std::min(e.lo, e.Across(c));
+    e.hi = std::max(e.hi, e.Across(c));
+  }
+  return e;
+}
+
 // ClusterMotionOptions::sides: the body of this scan's hits 8-connected to `cells` (a cluster
-// measured moving by m) through hits no cluster holds, within the cluster's band across its
-// motion (a cell either side), at most side_max_cells behind its front and each hit for fewer
-// than `wall_scans` scans (their role becomes kAttached: the body's); of these, the cells behind
-// the cluster's rear (its trailing side; the hits beside it are another body's as often as its
-// own: a walker's neighbour, a cyclist's).
+// of extent `e` along its motion) through hits no cluster holds, within the cluster's band
+// across its motion (a cell either side), at most side_max_cells behind its front and each hit
+// for fewer than `wall_scans` scans (their role becomes kAttached: the body's); of these, the
+// cells behind the cluster's rear (its trailing side; the hits beside it are another body's as
+// often as its own: a walker's neighbour, a cyclist's).
 template <typename HitNow>
 std::vector<std::size_t> TrailingSide(const ScrollingGridGeometry& g,
-                                      std::span<const std::size_t> cells, const ClusterMotion& m,
+                                      std::span<const std::size_t> cells, const MotionExtent& e,
                                       const HitNow& hit_now, std::span<const float> hit_scans,
                                       double wall_scans, const ClusterMotionOptions& options,
                                       std::vector<std::uint8_t>& role) {
-  const double length = std::hypot(m.dx_cells, m.dy_cells);
-  const double ux = m.dx_cells / length, uy = m.dy_cells / length;
-  const auto along = [&](const CellIndex& c) { return c.ix * ux + c.iy * uy; };
-  const auto across = [&](const CellIndex& c) { return c.iy * ux - c.ix * uy; };
-  double front = -std::numeric_limits<double>::infinity(), rear = -front;
-  double lo = rear, hi = front;
   std::vector<CellIndex> queue;
-  for (const std::size_t cell : cells) {
-    const CellIndex c = g.LocalFromGlobal(g.GlobalFromStorage(cell));
-    front = std::max(front, along(c));
-    rear = std::min(rear, along(c));
-    lo = std::min(lo, across(c));
-    hi = std::max(hi, across(c));
-    queue.push_back(c);
-  }
+  for (const std::size_t cell : cells)
+    queue.push_back(g.LocalFromGlobal(g.GlobalFromStorage(cell)));
   std::vector<std::size_t> trailing;
   for (std::size_t q = 0; q < queue.size(); ++q) {
     const CellIndex c = queue[q];
@@ -196,13 +213,13 @@ std::vector<std::size_t> TrailingSide(const ScrollingGridGeometry& g,
       for (int x = std::max(0, c.ix - 1); x <= std::min(g.width() - 1, c.ix + 1); ++x) {
         const std::size_t s = g.StorageIndexOfLocal({x, y});
         const CellIndex n{x, y};
-        if (role[s] != kFree || !hit_now(s) || across(n) < lo - 1.0 || across(n) > hi + 1.0 ||
-            along(n) < front - options.side_max_cells ||
+        if (role[s] != kFree || !hit_now(s) || e.Across(n) < e.lo - 1.0 ||
+            e.Across(n) > e.hi + 1.0 || e.Along(n) < e.front - options.side_max_cells ||
             static_cast<double>(hit_scans[s]) >= wall_scans) {
           continue;
         }
         role[s] = kAttached;
-        if (along(n) < rear) trailing.push_back(s);
+        if (e.Along(n) < e.rear) trailing.push_back(s);
         queue.push_back(n);
       }
     }
@@ -505,38 +522,37 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     // cell a cycle or more, longer than its extent along its motion takes it, two scans spare
     // (a 4.5 m car's side at 3 m/s covers a cell for 19 scans, over staying_min_hit_scans; a
     // walker is slower and the count alone holds).
+    const bool fast = moved_cells * per_cycle >= 1.0;  // a cell a cycle or more
+    std::optional<MotionExtent> extent;
+    if (fast) extent = ExtentAlong(g, cluster.cells, m.dx_cells, m.dy_cells);
     double wall_scans = options.staying_min_hit_scans;
-    if (options.staying_min_hit_scans > 0 && moved_cells * per_cycle >= 1.0) {
-      const double ux = m.dx_cells / moved_cells, uy = m.dy_cells / moved_cells;
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const std::size_t cell : cluster.cells) {
-        const CellIndex c = local_of(cell);
-        lo = std::min(lo, c.ix * ux + c.iy * uy);
-        hi = std::max(hi, c.ix * ux + c.iy * uy);
-      }
-      wall_scans = std::max(wall_scans, (hi - lo + 1.0) / (moved_cells * per_cycle) + 2.0);
+    if (options.staying_min_hit_scans > 0 && fast) {
+      wall_scans = std::max(wall_scans,
+                            (extent->front - extent->rear + 1.0) / (moved_cells * per_cycle) + 2.0);
     }
     const double b = options.blend;
+    const auto blend_to_body = [&](std::size_t cell) {
+      vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
+      vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
+    };
     for (const std::size_t cell : cluster.cells) {
       if (moved && hit_now(cell) && HitBefore(*maps, local_of(cell)) &&
           static_cast<double>(hit_scans[cell]) >= wall_scans) {
         continue;  // staying fits
       }
-      vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
-      vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
+      blend_to_body(cell);
     }
     // A slow body's trailing side (ClusterMotionOptions::sides): a body whose own hits say how
     // it moves (not a line sliding along itself).
-    if (options.sides && long_baseline && moved_cells * per_cycle >= 1.0 &&
+    if (options.sides && long_baseline && fast &&
         !SlidesAlongItsLine(hits, m.dx_cells, m.dy_cells)) {
       const double speed = std::hypot(body_vx, body_vy);
       for (const std::size_t cell :
-           TrailingSide(g, cluster.cells, m, hit_now, hit_scans, wall_scans, options, role)) {
+           TrailingSide(g, cluster.cells, *extent, hit_now, hit_scans, wall_scans, options, role)) {
         const double ex = static_cast<double>(vx[cell]) - body_vx;
         const double ey = static_cast<double>(vy[cell]) - body_vy;
         if (std::hypot(ex, ey) <= options.side_min_disagreement * speed) continue;
-        vx[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vx[cell]) + b * body_vx);
-        vy[cell] = static_cast<float>((1.0 - b) * static_cast<double>(vy[cell]) + b * body_vy);
+        blend_to_body(cell);
         confidence[cell] = std::max(confidence[cell], static_cast<float>(known_confidence));
       }
     }
