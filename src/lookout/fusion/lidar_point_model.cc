@@ -294,20 +294,24 @@ ArcCentre ArcPieceCentre(double radius_m, double chord_m, int returns, double st
 
 namespace {
 
-// The piece of a round body's arc the scan saw, when the scan says which edge of the circle it
-// is: an end seen free is the circle's silhouette (within a beam spacing), an end hidden by
-// something nearer may have the rest of the circle behind it. Where the hidden extent past one
-// end can hold the whole of the diameter's missing part and past the other cannot, the piece
-// is the silhouette's edge on that other side: the walker half behind another shows the edge
-// that sticks out. nullopt where the scan does not say (both ends free: the whole arc, or both
-// hidden). The chord is the piece's extent across the ray, clamped to the diameter.
+// Where the scan places the piece of a round body's arc it saw: an end seen free lies within a
+// beam spacing of the circle's silhouette or short of it (the last returns at grazing
+// incidence split off), an end hidden by something nearer may have the rest of the circle
+// behind it. Where the hidden extent past one end can hold the whole of the diameter's missing
+// part and past the other cannot, the piece is the silhouette's edge on that other side: the
+// walker half behind another shows the edge that sticks out. Where neither can, the piece lies
+// between the two silhouettes, the missing part shared between its ends in a way the scan does
+// not tell: anywhere on the near half-circle (for a whole arc, where nothing is missing, one
+// place). nullopt where both ends could hide the rest: the piece may be anywhere on the circle
+// and the radius-behind-the-middle model stands. The chord is the piece's extent across the
+// ray, clamped to the diameter.
 struct ArcPiece {
   double chord_m = 0.0;
   double start_min_m = 0.0, start_max_m = 0.0;  // ArcPieceCentre's
 };
 // `across`: the ray to the object turned a quarter left, unit.
-std::optional<ArcPiece> EdgePiece(const LidarObject& object, const Vector2d& across,
-                                  double radius_m, double spacing_m) {
+std::optional<ArcPiece> PlacedArcPiece(const LidarObject& object, const Vector2d& across,
+                                       double radius_m, double spacing_m) {
   const double chord = std::clamp(std::abs((object.front_end_m - object.front_start_m).dot(across)),
                                   0.0, 2.0 * radius_m);
   const double missing = 2.0 * radius_m - chord;
@@ -317,11 +321,21 @@ std::optional<ArcPiece> EdgePiece(const LidarObject& object, const Vector2d& acr
   const double hidden_high = start_low ? object.hidden_end_m : object.hidden_start_m;
   const bool low_holds = hidden_low >= missing;
   const bool high_holds = hidden_high >= missing;
-  if (low_holds == high_holds) return std::nullopt;
+  if (low_holds && high_holds) return std::nullopt;
+  if (!low_holds && !high_holds) return ArcPiece{chord, -radius_m, radius_m - chord};
   // The silhouette lies within a beam spacing past the free end.
   const double edge = std::min(spacing_m, missing);
   if (low_holds) return ArcPiece{chord, radius_m - chord - edge, radius_m - chord};
   return ArcPiece{chord, -radius_m, -radius_m + edge};
+}
+
+// The unit vector from a square's centre to the middle of its side facing along -beam: the
+// square's axis nearest the ray, turned towards the lidar.
+Vector2d FacingSideNormal(double yaw_rad, const Vector2d& beam) {
+  const Vector2d axis(std::cos(yaw_rad), std::sin(yaw_rad));
+  const Vector2d other(-axis.y(), axis.x());
+  const Vector2d& nearest = std::abs(axis.dot(beam)) >= std::abs(other.dot(beam)) ? axis : other;
+  return nearest.dot(beam) > 0.0 ? Vector2d(-nearest) : nearest;
 }
 
 // The round body's point with the camera's heading (LidarPointModelOptions::round_body_heading,
@@ -350,14 +364,19 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   const double spacing = grid ? options.grid_cell_size_m : range * options.beam_spacing_rad;
   const double noise = options.range_sigma_m * options.range_sigma_m;
   Matrix2d center_covariance;
-  // A piece the scan places at the circle's edge (EdgePiece): the centre behind it as the
-  // circle puts it (ArcPieceCentre), not a radius behind its middle. Its spread along the ray:
-  // the range noise on the mean of its n returns, the depth's over where the edge lies, and the
-  // radius's error as the side's middle feels it. Before, the crowd's pieces of two to four
-  // returns, mostly such edges, were 0.14 m off across the ray against 0.10 m of sigma, and
-  // 9 cm too deep (docs/fusion.md, "A walker's edge").
+  // A piece the scan places on the circle (PlacedArcPiece: at an edge, or between the two
+  // silhouettes): the centre behind it as the circle puts it (ArcPieceCentre), not a radius
+  // behind its middle. Its spread: the depth's and the offset's over where the piece lies, the
+  // range noise on the mean of its n returns (along the ray, and across it, where the n
+  // returns' chord places the centre), and the radius's error as the side's middle feels it.
+  // Before, the crowd's pieces of two to four returns, mostly edges, were 0.14 m off across the
+  // ray against 0.10 m of sigma, and 9 cm too deep (docs/fusion.md, "A walker's edge"); whole
+  // arcs taken for a radius behind their middle were 3-5 cm too deep where the grazing returns
+  // had split off, and the range noise of one return along and half of it across made the
+  // well-seen walkers' points 3-10 times too wide in variance (docs/fusion.md, "A whole arc's
+  // centre").
   const std::optional<ArcPiece> piece =
-      grid ? std::nullopt : EdgePiece(object, across, *radius, spacing);
+      grid ? std::nullopt : PlacedArcPiece(object, across, *radius, spacing);
   if (piece) {
     const int count = static_cast<int>(object.point_count);
     const ArcCentre centre =
@@ -368,31 +387,45 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
                       centre.mean_m.y() * across;
     Matrix2d own = centre.covariance;
     own(0, 0) += noise / returns + side_radius_sigma * side_radius_sigma;
-    own(1, 1) += 0.5 * noise;
+    own(1, 1) += noise / returns;
     Matrix2d axes;
     axes.col(0) = beam;
     axes.col(1) = across;
     center_covariance = axes * own * axes.transpose();
   } else {
     // The centre depth_r radii behind the point; its covariance, the arc's own: along the ray
-    // the range noise and the radius's error (half the camera's size error, depth_r times);
-    // across it the unseen rest of the diameter, the range noise's share at the chord's two
-    // ends and their beam spacing (the segmentation's formula for ends seen free), or a cell's
-    // width for the grid's.
+    // the range noise; across it the unseen rest of the diameter, the range noise's share at
+    // the chord's two ends and their beam spacing (the segmentation's formula for ends seen
+    // free), or a cell's width for the grid's. And the radius's error (half the camera's size
+    // error) as the side's middle feels it: the centre moves depth_r times it away from the
+    // point and the side's middle the radius back towards it, so it moves by
+    // depth_r beam + m per metre of radius (m: from the centre to the facing side's middle),
+    // about nothing along the ray where the square faces the lidar square on. Taken whole
+    // along the ray, depth_r times, it made the walkers' side points 2-4 times too wide there
+    // (docs/fusion.md, "A whole arc's centre").
     square.center_m = object.point_m + depth_r * *radius * beam;
-    const double radius_sigma = 0.5 * depth_r * options.camera_size_sigma_m;
-    const double var_along =
-        noise + radius_sigma * radius_sigma + (grid ? spacing * spacing / 12.0 : 0.0);
+    const double var_along = noise + (grid ? spacing * spacing / 12.0 : 0.0);
     const double var_across =
         HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
-    center_covariance =
-        var_along * beam * beam.transpose() + var_across * across * across.transpose();
+    const Vector2d radius_slope = depth_r * beam + FacingSideNormal(square.yaw_rad, beam);
+    const double radius_sigma = 0.5 * options.camera_size_sigma_m;
+    center_covariance = var_along * beam * beam.transpose() +
+                        var_across * across * across.transpose() +
+                        radius_sigma * radius_sigma * radius_slope * radius_slope.transpose();
   }
   // A chord longer than the diameter holds another body at one end or the other (a child
   // 6 cm from a pushchair, one segment to the scan): this body anywhere along it.
   if (visible > 2.0 * *radius) {
     const Vector2d u = (object.front_end_m - object.front_start_m) / visible;
     center_covariance += HiddenExtentVariance(2.0 * *radius, visible) * u * u.transpose();
+  }
+  // A segment deeper along the ray than a radius is no arc of one circle (an arc's returns lie
+  // within a radius of its nearest point in depth): another body stands in it, nearer or
+  // further (a lamp post in front of a walker in the crowd, one segment to the scan), and this
+  // body's side lies at either end of that depth, which the camera's depth cannot tell.
+  const double depth_extent = std::abs((object.front_end_m - object.front_start_m).dot(beam));
+  if (!grid && depth_extent > *radius) {
+    center_covariance += 0.25 * depth_extent * depth_extent * beam * beam.transpose();
   }
   const std::optional<stereo::CartesianPoint> side =
       stereo::ExpectedFrontPoint(square, center_covariance, body.yaw_variance, lidar_origin_m);

@@ -52,10 +52,10 @@ struct LidarPointModelOptions {
   // along it (up to a car's side) put the camera's depth in charge where the lidar measured
   // it; in the crowd, a walker's camera object 1 m off so placed made a track of its own
   // (docs/fusion.md, "A walker's square turned by the camera's heading"). A piece of the arc
-  // the scan places at the circle's edge (one end in a nearer body's shadow, the other seen
-  // free: the silhouette) has the centre where the circle puts it behind that piece
-  // (ArcPieceCentre), across and in depth, not a radius behind its middle (docs/fusion.md, "A
-  // walker's edge").
+  // the scan places on the circle (at its edge: one end in a nearer body's shadow, the other
+  // seen free, the silhouette; or between its silhouettes: both ends seen free) has the centre
+  // where the circle puts it behind that piece (ArcPieceCentre), across and in depth, not a
+  // radius behind its middle (docs/fusion.md, "A walker's edge", "A whole arc's centre").
   bool round_body_heading = true;
   // The scanner's range noise (1 sigma; the simulator's), for the round body's arc: a
   // LidarObject carries none.

@@ -455,7 +455,11 @@ TEST(LidarPointModelTest, AWalkersSquareTurnsWithTheCamerasHeading) {
 
 // The turned square's covariance: with the camera's heading to 0.05 rad and the whole chord
 // seen, centimetres across the ray where the heading unknown gives 0.13 m; a chord of half the
-// diameter adds the unseen half's (0.3 m)^2 / 12 across, one longer than it the surplus's.
+// diameter, both ends seen free, lies anywhere between the silhouettes: the unseen half's
+// (0.3 m)^2 / 12 across, give or take the range noise's terms (the whole arc's half of one
+// return's variance across, the piece's the mean of its returns'), and along the ray the depth
+// that goes with it (a piece off the ray's middle lies deeper), more than the whole arc's by
+// about a centimetre's standard deviation; one longer than the diameter, the surplus's.
 TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
   const double r = 0.3;
   const Vector2d lidar(0.0, 0.0);
@@ -472,12 +476,66 @@ TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
             0.12);
   const LidarObject half = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
   const Matrix2d q = FacingSidePoint(half, walker, lidar, options).covariance;
-  EXPECT_NEAR(q(1, 1) - p(1, 1), r * r / 12.0, 1e-9);
-  EXPECT_NEAR(q(0, 0), p(0, 0), 1e-12);
+  const double noise = options.range_sigma_m * options.range_sigma_m;
+  EXPECT_NEAR(q(1, 1) - p(1, 1), r * r / 12.0, noise);
+  EXPECT_GT(q(0, 0), p(0, 0));
+  EXPECT_LT(q(0, 0) - p(0, 0), 0.015 * 0.015);
   // A chord of 0.9 m holds another body besides the 0.6 m one: (0.3 m)^2 / 12 along it.
   const LidarObject two = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.45));
   const Matrix2d t = FacingSidePoint(two, walker, lidar, options).covariance;
   EXPECT_NEAR(t(1, 1) - p(1, 1), 0.3 * 0.3 / 12.0, 1e-9);
+}
+
+// The radius's error as the side's middle feels it (the whole arc, the radius-behind-the-middle
+// model): the centre lies a radius behind the arc's nearest point and the side's middle a
+// radius in front of the centre, so where the camera's square faces the lidar square on, the
+// camera's size error moves the side's middle along the ray not at all: the range noise alone
+// is left there (it was that and the radius's error whole, 0.05 m, before). Turned 40 degrees,
+// the side's middle lies r cos 40 in front of the centre and r sin 40 to the side: the radius's
+// error moves it by (1 - cos 40, sin 40) per metre.
+TEST(LidarPointModelTest, TheRadiusErrorCancelsWhereTheSquareFacesSquareOn) {
+  const double r = 0.3;
+  const Vector2d lidar(0.0, 0.0);
+  const Vector2d centre(12.0, 0.0);
+  const LidarPointModelOptions options;
+  const double noise = options.range_sigma_m * options.range_sigma_m;
+  const double size_variance = 0.25 * options.camera_size_sigma_m * options.camera_size_sigma_m;
+  const LidarObject whole = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, r));
+  const auto side_variances = [&](double yaw) {
+    const stereo::OrientedBox square{centre, yaw, 2.0 * r, 2.0 * r};
+    const auto truth = stereo::FrontSegmentFacing(square, lidar);
+    const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r,
+                            truth->end_m - truth->start_m, 1e-8};
+    const Matrix2d c = FacingSidePoint(whole, walker, lidar, options).covariance;
+    return Vector2d(c(0, 0), c(1, 1));
+  };
+  const Vector2d square_on = side_variances(0.0);
+  EXPECT_NEAR(square_on.x(), noise, 1e-6);
+  const double turn = 40.0 * kPi / 180.0;
+  const Vector2d turned = side_variances(turn);
+  const double along = 1.0 - std::cos(turn);
+  const double across = std::sin(turn);
+  EXPECT_NEAR(turned.x() - square_on.x(), size_variance * along * along, 1e-6);
+  EXPECT_NEAR(turned.y() - square_on.y(), size_variance * across * across, 1e-6);
+}
+
+// A segment deeper along the ray than a radius is no arc of one circle: a lamp post 0.5 m in
+// front of a walker, one segment to the scan. The walker's side is at either end of that depth:
+// (0.5 m / 2)^2 along the ray. A segment 0.2 m deep, within a radius, gets nothing of it.
+TEST(LidarPointModelTest, ASegmentDeeperThanARadiusHoldsAnotherBody) {
+  const double r = 0.3;
+  const Vector2d lidar(0.0, 0.0);
+  const LidarPointModelOptions options;
+  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, Vector2d(0.0, 2.0 * r),
+                          0.05 * 0.05};
+  const auto along_variance = [&](double depth) {
+    LidarObject o = SegmentObject(Vector2d(20.0, 0.0), Vector2d(0.5 * depth, 0.1));
+    o.hidden_start_m = o.hidden_end_m = 5.0;  // a piece the scan does not place
+    return FacingSidePoint(o, walker, lidar, options).covariance(0, 0);
+  };
+  EXPECT_LT(along_variance(0.2), 0.01 * 0.01 + 0.03 * 0.03);
+  EXPECT_GT(along_variance(0.5), 0.25 * 0.25);
+  EXPECT_LT(along_variance(0.5), 0.25 * 0.25 + along_variance(0.2) + 1e-3);
 }
 
 // The corner lies anywhere in what the scan could not see past the segment's end: 0.42 m of
