@@ -138,23 +138,23 @@ FrontSideRange FrontSide(std::span<const Vector2d> points, const Vector2d& lidar
   const Vector2d side_2 = points.back() - points[corner];
   const double l1 = side_1.norm();
   const double l2 = side_2.norm();
-  // An arc's returns lie near the furthest distance from the chord over much of its middle
-  // (within 2 sigma_r of it over +-37 degrees of a half circle of r = 0.3 m), so the noise
-  // picks the furthest anywhere there: a walker's whole arc seen from 10 m split at its fifth
-  // return of sixteen was taken for an L, its first four returns dropped from the front and
-  // the side's middle 3-5 cm too deep. Where the split is balanced as an arc's within those
-  // 37 degrees would be (the two chords from the ends within a factor of 2 of each other), the
-  // returns' balance is judged at the middle of the returns within that noise of the furthest;
-  // a cyclist's L seen end on, a side three times its end, keeps its corner.
+  // An arc's returns lie near the furthest distance from the chord over much of its middle,
+  // so the noise picks the furthest anywhere there (SegmentationOptions::arc_top_sigmas): a
+  // walker's whole arc seen from 10 m split at its fifth return of sixteen was taken for an L,
+  // its first four returns dropped from the front and the side's middle 3-5 cm too deep. Where
+  // the split is balanced as an arc's top would be, the returns' balance is judged at the
+  // middle of the returns within that noise of the furthest; a cyclist's L seen end on, a side
+  // three times its end, keeps its corner.
   const auto balanced = [&](std::size_t split) {
     const std::size_t returns_1 = split + 1;
     const std::size_t returns_2 = points.size() - split;
     return std::max(returns_1, returns_2) < 2 * std::min(returns_1, returns_2);
   };
-  const bool arc_like_split = std::max(l1, l2) <= 2.0 * std::min(l1, l2);
-  const std::size_t apex =
-      arc_like_split ? NearFurthestMiddle(chord_distances, distance, 2.0 * options.range_noise_m)
-                     : corner;
+  const bool arc_like_split = std::max(l1, l2) <= options.arc_max_chord_ratio * std::min(l1, l2);
+  const std::size_t apex = arc_like_split
+                               ? NearFurthestMiddle(chord_distances, distance,
+                                                    options.arc_top_sigmas * options.range_noise_m)
+                               : corner;
   if (std::max(l1, l2) < options.min_box_side_m && (balanced(corner) || balanced(apex))) {
     return {0, points.size(), true};
   }
@@ -338,6 +338,10 @@ void SegmentationOptions::Validate(const std::string& source) const {
         "must be finite and > 0");
   check(std::isfinite(min_box_side_m) && min_box_side_m >= 0.0, "min_box_side_m",
         "must be finite and >= 0");
+  check(std::isfinite(arc_top_sigmas) && arc_top_sigmas >= 0.0, "arc_top_sigmas",
+        "must be finite and >= 0");
+  check(std::isfinite(arc_max_chord_ratio) && arc_max_chord_ratio >= 1.0, "arc_max_chord_ratio",
+        "must be finite and >= 1");
   check(std::isfinite(max_side_length_m) && max_side_length_m > 0.0, "max_side_length_m",
         "must be finite and > 0");
   check(std::isfinite(velocity_unknown_sigma_mps) && velocity_unknown_sigma_mps > 0.0,

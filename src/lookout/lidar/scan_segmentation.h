@@ -86,6 +86,14 @@ struct SegmentationOptions {
   // (0.49 m for the catalogue's widest pedestrian, r = 0.35 m): its point is the whole arc's
   // middle. The boxes' long sides are 1.8 m (a cyclist) and more.
   double min_box_side_m = 0.7;
+  // Whether a small L's corner lies mid-way through its returns (an arc) is judged, where its
+  // two chords from the ends are within arc_max_chord_ratio of each other, at the middle of the
+  // returns within arc_top_sigmas range sigmas of the furthest one's distance from the chord:
+  // on an arc's flat top the noise picks the furthest anywhere (within 2 sigmas of it over +-37
+  // degrees of a half circle of r = 0.3 m, whose chords there are within a factor of 2). 0:
+  // the furthest return alone, as before 2026-12-05.
+  double arc_top_sigmas = 2.0;
+  double arc_max_chord_ratio = 2.0;
   // Report only the dynamic objects (the paper's list, IV.D); false keeps static ones too.
   bool dynamic_only = true;
   // With dynamic_only, report the unmapped objects too (every return unknown: on cells the map

@@ -228,6 +228,12 @@ TEST(ScanSegmentation, ANoisyArcIsOneArcWhereverItsFurthestReturnFalls) {
     ASSERT_NEAR(scan.BeamAngle(beam), angle, 1e-4);
     scan.ranges_m[beam] = static_cast<float>(from_lidar.norm());
   }
+  // The furthest return alone (arc_top_sigmas 0, as before) takes it for an L.
+  SegmentationOptions furthest_alone = KeepAll();
+  furthest_alone.arc_top_sigmas = 0.0;
+  const LidarObjectFrame l = SegmentScan(scan, {}, Pose2(), furthest_alone, 0.1);
+  ASSERT_EQ(l.objects.size(), 1u);
+  EXPECT_EQ(l.objects[0].round_body_shift_m.norm(), 0.0);
   const LidarObjectFrame f = SegmentScan(scan, {}, Pose2(), KeepAll(), 0.1);
   ASSERT_EQ(f.objects.size(), 1u);
   const LidarObject& o = f.objects[0];
@@ -521,6 +527,12 @@ TEST(ScanSegmentation, OptionsNameTheBadField) {
   EXPECT_THROW(o.Validate(), InputError);
   o = {};
   o.min_box_side_m = -0.1;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.arc_max_chord_ratio = 0.5;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.arc_top_sigmas = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(o.Validate(), InputError);
 }
 
