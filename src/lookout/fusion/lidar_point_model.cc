@@ -329,15 +329,6 @@ std::optional<ArcPiece> PlacedArcPiece(const LidarObject& object, const Vector2d
   return ArcPiece{chord, -radius_m, -radius_m + edge};
 }
 
-// The unit vector from a square's centre to the middle of its side facing along -beam: the
-// square's axis nearest the ray, turned towards the lidar.
-Vector2d FacingSideNormal(double yaw_rad, const Vector2d& beam) {
-  const Vector2d axis(std::cos(yaw_rad), std::sin(yaw_rad));
-  const Vector2d other(-axis.y(), axis.x());
-  const Vector2d& nearest = std::abs(axis.dot(beam)) >= std::abs(other.dot(beam)) ? axis : other;
-  return nearest.dot(beam) > 0.0 ? Vector2d(-nearest) : nearest;
-}
-
 // The round body's point with the camera's heading (LidarPointModelOptions::round_body_heading,
 // whose comment gives the model). `seen` where the camera gives no heading, the radius is
 // unknown or the lidar would stand inside the square.
@@ -396,22 +387,28 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
     // The centre depth_r radii behind the point; its covariance, the arc's own: along the ray
     // the range noise; across it the unseen rest of the diameter, the range noise's share at
     // the chord's two ends and their beam spacing (the segmentation's formula for ends seen
-    // free), or a cell's width for the grid's. And the radius's error (half the camera's size
-    // error) as the side's middle feels it: the centre moves depth_r times it away from the
-    // point and the side's middle the radius back towards it, so it moves by
-    // depth_r beam + m per metre of radius (m: from the centre to the facing side's middle),
-    // about nothing along the ray where the square faces the lidar square on. Taken whole
-    // along the ray, depth_r times, it made the walkers' side points 2-4 times too wide there
-    // (docs/fusion.md, "A whole arc's centre").
+    // free), or a cell's width for the grid's. The radius's error comes below, once the
+    // square's facing side is known.
     square.center_m = object.point_m + depth_r * *radius * beam;
     const double var_along = noise + (grid ? spacing * spacing / 12.0 : 0.0);
     const double var_across =
         HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
-    const Vector2d radius_slope = depth_r * beam + FacingSideNormal(square.yaw_rad, beam);
+    center_covariance =
+        var_along * beam * beam.transpose() + var_across * across * across.transpose();
+  }
+  const std::optional<stereo::FrontSegment> front =
+      stereo::FrontSegmentFacing(square, lidar_origin_m);
+  if (!front) return seen;
+  if (!piece) {
+    // The radius's error (half the camera's size error) as the side's middle feels it: the
+    // centre moves depth_r times it away from the point and the side's middle the radius back
+    // towards it, so it moves by depth_r beam + m per metre of radius (m: from the centre to
+    // the facing side's middle), about nothing along the ray where the square faces the lidar
+    // square on. Taken whole along the ray, depth_r times, it made the walkers' side points
+    // 2-4 times too wide there (docs/fusion.md, "A whole arc's centre").
+    const Vector2d radius_slope = depth_r * beam + (front->midpoint_m - square.center_m) / *radius;
     const double radius_sigma = 0.5 * options.camera_size_sigma_m;
-    center_covariance = var_along * beam * beam.transpose() +
-                        var_across * across * across.transpose() +
-                        radius_sigma * radius_sigma * radius_slope * radius_slope.transpose();
+    center_covariance += radius_sigma * radius_sigma * radius_slope * radius_slope.transpose();
   }
   // A chord longer than the diameter holds another body at one end or the other (a child
   // 6 cm from a pushchair, one segment to the scan): this body anywhere along it.
@@ -429,9 +426,7 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   }
   const std::optional<stereo::CartesianPoint> side =
       stereo::ExpectedFrontPoint(square, center_covariance, body.yaw_variance, lidar_origin_m);
-  const std::optional<stereo::FrontSegment> front =
-      stereo::FrontSegmentFacing(square, lidar_origin_m);
-  if (!side || !front) return seen;
+  if (!side) return seen;
   // The square's facing side as the front, so that its normal, a radius behind the middle,
   // leads to the square's centre (the tracking stage's centre of a walker).
   return LidarSidePoint{side->point_m, side->covariance, front->start_m, front->end_m};

@@ -151,11 +151,11 @@ FrontSideRange FrontSide(std::span<const Vector2d> points, const Vector2d& lidar
     return std::max(returns_1, returns_2) < 2 * std::min(returns_1, returns_2);
   };
   const bool arc_like_split = std::max(l1, l2) <= options.arc_max_chord_ratio * std::min(l1, l2);
-  const std::size_t apex = arc_like_split
-                               ? NearFurthestMiddle(chord_distances, distance,
-                                                    options.arc_top_sigmas * options.range_noise_m)
-                               : corner;
-  if (std::max(l1, l2) < options.min_box_side_m && (balanced(corner) || balanced(apex))) {
+  const bool arc = balanced(corner) ||
+                   (arc_like_split &&
+                    balanced(NearFurthestMiddle(chord_distances, distance,
+                                                options.arc_top_sigmas * options.range_noise_m)));
+  if (std::max(l1, l2) < options.min_box_side_m && arc) {
     return {0, points.size(), true};
   }
   const Vector2d to_lidar = lidar - (points[corner] + 0.5 * (side_1 + side_2));
