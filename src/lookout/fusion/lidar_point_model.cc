@@ -299,12 +299,15 @@ namespace {
 // incidence split off), an end hidden by something nearer may have the rest of the circle
 // behind it. Where the hidden extent past one end can hold the whole of the diameter's missing
 // part and past the other cannot, the piece is the silhouette's edge on that other side: the
-// walker half behind another shows the edge that sticks out. Where neither can, the piece lies
-// between the two silhouettes, the missing part shared between its ends in a way the scan does
-// not tell: anywhere on the near half-circle (for a whole arc, where nothing is missing, one
-// place). nullopt where both ends could hide the rest: the piece may be anywhere on the circle
-// and the radius-behind-the-middle model stands. The chord is the piece's extent across the
-// ray, clamped to the diameter.
+// walker half behind another shows the edge that sticks out. That other end's silhouette lies
+// within its own hidden extent, a beam spacing where the scan sees it free, more where a
+// nearer body's shadow covers part of the way (a walker between two others: taken within a
+// spacing, such pieces were 0.2-0.3 m off across against 0.04 m of sigma in the crowd). Where
+// neither can, the piece lies between the two silhouettes, the missing part shared between its ends
+// in a way the scan does not tell: anywhere on the near half-circle (for a whole arc, where nothing
+// is missing, one place). nullopt where both ends could hide the rest: the piece may be anywhere on
+// the circle and the radius-behind-the-middle model stands. The chord is the piece's extent across
+// the ray, clamped to the diameter.
 struct ArcPiece {
   double chord_m = 0.0;
   double start_min_m = 0.0, start_max_m = 0.0;  // ArcPieceCentre's
@@ -323,8 +326,9 @@ std::optional<ArcPiece> PlacedArcPiece(const LidarObject& object, const Vector2d
   const bool high_holds = hidden_high >= missing;
   if (low_holds && high_holds) return std::nullopt;
   if (!low_holds && !high_holds) return ArcPiece{chord, -radius_m, radius_m - chord};
-  // The silhouette lies within a beam spacing past the free end.
-  const double edge = std::min(spacing_m, missing);
+  // The silhouette lies within the other end's hidden extent: a beam spacing where the scan
+  // sees it free, less than the missing part (it does not hold).
+  const double edge = std::min(std::max(spacing_m, low_holds ? hidden_high : hidden_low), missing);
   if (low_holds) return ArcPiece{chord, radius_m - chord - edge, radius_m - chord};
   return ArcPiece{chord, -radius_m, -radius_m + edge};
 }

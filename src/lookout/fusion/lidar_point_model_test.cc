@@ -747,5 +747,52 @@ TEST(LidarPointModelTest, AWalkersEdgeTakesTheCentreBehindIt) {
   EXPECT_GT(std::abs((middle.point_m - truth->midpoint_m).dot(across)), 0.12);
 }
 
+// The same edge, its silhouette 0.15 m past the last return, hidden there by a nearer body
+// whose shadow covers 0.2 m past that end: the scan does not see the end free, so the
+// silhouette may lie anywhere within those 0.2 m, not within a beam spacing (0.08 m at 18 m).
+// The centre is placed over that margin and the side's middle holds the truth within three
+// sigmas across the ray (0.05 m off against 0.06 m of sigma), where one beam spacing's margin
+// put it 3.7 sigmas off (0.11 m against 0.03 m).
+TEST(LidarPointModelTest, AnEdgeInANearerBodysShadowMayReachAcrossIt) {
+  const double r = 0.3;
+  const Vector2d lidar(0.0, 0.0);
+  const Vector2d centre(18.0, 0.6);
+  const double dphi = 0.25 * kPi / 180.0;
+  const Vector2d beam = centre.normalized();
+  const Vector2d across(-beam.y(), beam.x());
+  const double centre_bearing = std::atan2(centre.y(), centre.x());
+  const double half_width = std::asin(r / centre.norm());
+  std::vector<Vector2d> returns;
+  for (double phi = centre_bearing + half_width - 0.15 / centre.norm(); returns.size() < 4;
+       phi -= dphi) {
+    const Vector2d d(std::cos(phi), std::sin(phi));
+    const double b = d.dot(centre);
+    const double h2 = r * r - (centre.squaredNorm() - b * b);
+    ASSERT_GT(h2, 0.0);
+    returns.push_back((b - std::sqrt(h2)) * d);
+  }
+  LidarObject piece;
+  for (const Vector2d& p : returns) piece.point_m += p / 4.0;
+  piece.front_start_m = returns.back();
+  piece.front_end_m = returns.front();
+  piece.point_count = 4;
+  piece.point_covariance = Vector2d(0.0001, 0.002).asDiagonal();
+  piece.hidden_start_m = 1.0;  // the low end in another walker's shadow
+  piece.hidden_end_m = 0.2;    // the high end in a nearer body's, 0.2 m of it
+  const stereo::OrientedBox square{centre, 0.3, 2.0 * r, 2.0 * r};
+  const auto truth = stereo::FrontSegmentFacing(square, lidar);
+  ASSERT_TRUE(truth.has_value());
+  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
+                          0.05 * 0.05};
+  const LidarSidePoint edge = FacingSidePoint(piece, walker, lidar, LidarPointModelOptions{});
+  const double error_across = (edge.point_m - truth->midpoint_m).dot(across);
+  const double sigma_across = std::sqrt(across.dot(edge.covariance * across));
+  EXPECT_GT(std::abs(error_across), 0.03);  // the margin's middle, not the silhouette
+  EXPECT_LT(std::abs(error_across), 3.0 * sigma_across);
+  // The margin's spread: at least that of a uniform place over the 0.2 m past the spacing.
+  const double margin = 0.2 - dphi * centre.norm();
+  EXPECT_GT(sigma_across, margin / std::sqrt(12.0));
+}
+
 }  // namespace
 }  // namespace lookout::fusion
