@@ -74,7 +74,9 @@ struct FuseObjectsResult {
 // object is never a piece.
 //
 // `priors`: where the camera tracks' previous pairs put their bodies now (FusionEngine,
-// PredictPairPrior), for the point gate (AssociateStereoToLidar).
+// PredictPairPrior), for the point gate (AssociateStereoToLidar), and for the fused covariance
+// of a point pair that disagrees with its own camera track's prior
+// (FusionOptions::history_disagreement_probability).
 FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                               std::span<const stereo::StereoPoint> stereo,
                               const FusionOptions& options, std::span<const PairPrior> priors = {});

@@ -122,6 +122,45 @@ TEST(FuseObjectsTest, APairThatDisagreesHoldsItsDisagreement) {
   EXPECT_LT((off.frame.objects[0].point_covariance - expected.covariance).norm(), 1e-9);
 }
 
+// A pair that agrees within its own covariances, where its camera track's prior (its last pair
+// predicted to this stamp) puts the body 0.6 m away against 5 cm: the fused point stays, its
+// covariance holds the disagreement with the body's history, d^2 / quantile under the fused and
+// the prior's covariances summed. A prior that agrees, another camera track's prior, or the
+// option off leave it as the pair alone makes it.
+TEST(FuseObjectsTest, APairItsCameraTrackPutsElsewhereHoldsTheDisagreement) {
+  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.1, 0.05))});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  FusionOptions options = CovariancesAsGiven();
+  const FuseObjectsResult alone = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(alone.pairs, 1u);
+  const FusedObject& f = alone.frame.objects[0];
+  const auto fused_with = [&](const std::vector<PairPrior>& priors) {
+    const FuseObjectsResult r = FuseObjects(lidar, stereo, options, priors);
+    EXPECT_EQ(r.pairs, 1u);
+    return r.frame.objects.at(0);
+  };
+
+  const stereo::CartesianPoint elsewhere{f.point_m + Vector2d(0.0, 0.6),
+                                         0.0025 * Matrix2d::Identity()};
+  const double d2 =
+      MahalanobisSquared(elsewhere.point_m - f.point_m, elsewhere.covariance + f.point_covariance);
+  const double quantile = ChiSquareQuantile(options.history_disagreement_probability, 2.0);
+  ASSERT_GT(d2, 2.0 * quantile);
+  const FusedObject widened = fused_with({PairPrior{0, elsewhere}});
+  EXPECT_LT((widened.point_m - f.point_m).norm(), 1e-12);
+  EXPECT_LT((widened.point_covariance - d2 / quantile * f.point_covariance).norm(), 1e-12);
+
+  const stereo::CartesianPoint agreeing{f.point_m + Vector2d(0.0, 0.02), elsewhere.covariance};
+  EXPECT_LT((fused_with({PairPrior{0, agreeing}}).point_covariance - f.point_covariance).norm(),
+            1e-15);
+  EXPECT_LT((fused_with({PairPrior{std::nullopt, elsewhere}}).point_covariance - f.point_covariance)
+                .norm(),
+            1e-15);
+  options.history_disagreement_probability = 1.0;
+  EXPECT_LT((fused_with({PairPrior{0, elsewhere}}).point_covariance - f.point_covariance).norm(),
+            1e-15);
+}
+
 // The lidar point's covariance is the model's (lidar_point_model.h) with the camera's class
 // where the camera paired the object, and the pair is fused with it: a segmentation object
 // (its own class unknown) paired with a stereo pedestrian gets the round body's spread; one

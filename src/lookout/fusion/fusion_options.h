@@ -63,6 +63,15 @@ struct FusionOptions {
   // A camera track's last pair as a second gate for its next (pair_memory.h): kept this long
   // (a lidar frame is 80 ms); 0: off, each frame pairs afresh as the paper does.
   double pair_memory_s = 0.3;
+  // A pair whose fused point disagrees with its camera track's own prior (the last pair's
+  // fused point predicted to this stamp) beyond the chi-square (2 dof) quantile of this
+  // probability, under the two covariances summed, has its fused covariance scaled by
+  // d^2 / quantile, as DisagreementScale does for the pair's two points: the camera's depth
+  // cannot tell a walker from the lamp post it passes (a walker's camera object with the post's
+  // segment, its own returns hidden, in the crowd: the pair agrees within its gate, the body's
+  // history 0.4 m away does not). 1: off. 0.99, since at 0.95 right-turn-cyclist's fused NEES
+  // fell under its band (docs/fusion.md, "A body's own history").
+  double history_disagreement_probability = 0.99;
 
   VelocitySource velocity_source = VelocitySource::kInformationWeighted;
 
