@@ -30,7 +30,8 @@ struct StereoPoint {
   Eigen::Matrix2d velocity_covariance = Eigen::Matrix2d::Identity();
   FrontSegment front;     // vehicle frame, the side facing the lidar origin
   // The object's point, vehicle frame: ExpectedFrontPoint, which is front.midpoint_m except
-  // near a corner view.
+  // near a corner view (fusion::PredictStereoPoint carries front.midpoint_m with this
+  // covariance: the likelier side, not the mixture's mean).
   CartesianPoint point;
   RangeBearing polar;     // the same point from the lidar origin, in the lidar frame
   double depth_m = 0.0;   // of the centre, along the camera's axis
