@@ -32,7 +32,11 @@ bool HitBefore(const HitMaps& m, const CellIndex& c) {
 // The doubled score of one hit now explained by the previous scan at (x, y): 2 for a hit there,
 // 1 for a hit next to it, 0 otherwise.
 int BeforeScore(const HitMaps& m, int x, int y) {
-  if (HitBefore(m, {x, y})) return 2;
+  if (m.Inside(x, y)) {
+    const std::size_t i = m.At(x, y);
+    return m.before[i] != 0 ? 2 : (m.before_near[i] != 0 ? 1 : 0);
+  }
+  // Off the maps: a hit of the previous scan may still lie next to it.
   for (int ny = y - 1; ny <= y + 1; ++ny) {
     for (int nx = x - 1; nx <= x + 1; ++nx) {
       if (HitBefore(m, {nx, ny})) return 1;

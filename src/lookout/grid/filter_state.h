@@ -64,6 +64,10 @@ class WindowIndexer {
     return row_base_[static_cast<std::size_t>(local_y)] +
            column_[static_cast<std::size_t>(local_x)];
   }
+  // Where local row `local_y`'s cells start in storage: whatever the scroll, a row is width()
+  // consecutive storage cells from here (in storage-column order, not local x order).
+  // Precondition: 0 <= local_y < height().
+  std::size_t RowStorage(int local_y) const { return row_base_[static_cast<std::size_t>(local_y)]; }
 
  private:
   int width_;

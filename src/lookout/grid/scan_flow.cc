@@ -127,12 +127,19 @@ void HitMaps::Reset(int width_cells, int height_cells) {
   height = height_cells;
   const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   before.assign(n, 0);
+  before_near.assign(n, 0);
   now.assign(n, 0);
   free_now.assign(n, 0);
 }
 
 void HitMaps::AddBefore(int ix, int iy) {
-  if (Inside(ix, iy)) before[At(ix, iy)] = 1;
+  if (!Inside(ix, iy)) return;
+  before[At(ix, iy)] = 1;
+  for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, height - 1); ++y) {
+    for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, width - 1); ++x) {
+      before_near[At(x, y)] = 1;
+    }
+  }
 }
 
 void HitMaps::AddFreeNow(int ix, int iy) {

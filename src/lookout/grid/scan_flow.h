@@ -102,6 +102,10 @@ struct HitMaps {
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> before;
+  // 1 where a hit of the previous scan lies at the cell or next to it (its 3 x 3 block): what
+  // the clusters' stage asks of every hit moved by every candidate displacement
+  // (cluster_motion.h), one lookup where it took up to nine.
+  std::vector<std::uint8_t> before_near;
   std::vector<std::uint8_t> now;
   std::vector<std::uint8_t> free_now;
 

@@ -156,6 +156,31 @@ MeasurementGrid ArcScan(const ScrollingGridGeometry& g, double x_cells, TimeNs s
   return z;
 }
 
+// The map of cells at or next to a previous scan's hit, against its definition: every cell of a
+// map with random hits, edges and corners among them, is 1 exactly where a hit lies within its
+// 3 x 3 block.
+TEST(ScanFlowTest, BeforeNearIsEveryCellNextToAHitOfThePreviousScan) {
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    HitMaps m;
+    m.Reset(37, 23);
+    std::uniform_int_distribution<int> x(-2, m.width + 1), y(-2, m.height + 1);
+    for (int k = 0; k < 60; ++k) m.AddBefore(x(rng), y(rng));
+    for (int cy = 0; cy < m.height; ++cy) {
+      for (int cx = 0; cx < m.width; ++cx) {
+        bool near = false;
+        for (int ny = cy - 1; ny <= cy + 1; ++ny) {
+          for (int nx = cx - 1; nx <= cx + 1; ++nx) {
+            near = near || (m.Inside(nx, ny) && m.before[m.At(nx, ny)] != 0);
+          }
+        }
+        ASSERT_EQ(m.before_near[m.At(cx, cy)] != 0, near) << "cell " << cx << ", " << cy;
+      }
+    }
+  }
+}
+
 TEST(ScanFlowTest, ASlowArcIsMeasuredOverTheLongBaseline) {
   ScanFlowOptions options;
   options.enabled = true;
