@@ -696,55 +696,69 @@ TEST(LidarPointModelTest, ArcPieceCentreIsWhereTheCircleIs) {
               0.05 * (depth2 - mean_depth * mean_depth));
 }
 
-// A walker (r = 0.3 m) 18 m away, its low side hidden by another walker nearer: the scan sees
-// its high edge, four returns on 0.24 m of the arc, the end past them free and the other in
-// the shadow. The edge model puts the side's middle on the truth's within 2 cm; taken for the
-// middle of an arc the scan does not place (both ends seen free) it is 0.14 m off across the
-// ray.
-TEST(LidarPointModelTest, AWalkersEdgeTakesTheCentreBehindIt) {
-  const double r = 0.3;
-  const Vector2d lidar(0.0, 0.0);
-  const Vector2d centre(18.0, 0.6);
-  const double dphi = 0.25 * kPi / 180.0;
-  const Vector2d beam = centre.normalized();
-  const double centre_bearing = std::atan2(centre.y(), centre.x());
-  const double half_width = std::asin(r / centre.norm());
-  std::vector<Vector2d> returns;
-  // The silhouette half a beam spacing past the last return (the model's mean: anywhere
-  // within the spacing).
-  for (double phi = centre_bearing + half_width - 0.5 * dphi; returns.size() < 4; phi -= dphi) {
-    const Vector2d d(std::cos(phi), std::sin(phi));
-    const double b = d.dot(centre);
-    const double h2 = r * r - (centre.squaredNorm() - b * b);
-    ASSERT_GT(h2, 0.0);
-    returns.push_back((b - std::sqrt(h2)) * d);
-  }
+// A walker (a 0.3 m circle) 18 m away whose high edge the scan sees: four returns on the arc,
+// beams 0.25 deg apart, the first `gap_rad` of bearing short of the silhouette; the low end in
+// another walker's shadow (hidden 1 m), the high end hidden `hidden_end_m`. The truth: the
+// middle of the side of the walker's square (heading 0.3 rad) facing the lidar.
+struct WalkersEdge {
+  static constexpr double kRadius = 0.3;
+  static constexpr double kBeamSpacingRad = 0.25 * kPi / 180.0;
+  Vector2d lidar = Vector2d::Zero();
+  Vector2d centre{18.0, 0.6};
   LidarObject piece;
-  for (const Vector2d& p : returns) piece.point_m += p / 4.0;
-  piece.front_start_m = returns.back();  // scan order: low bearing first
-  piece.front_end_m = returns.front();
-  piece.point_count = 4;
-  piece.point_covariance = Vector2d(0.0001, 0.002).asDiagonal();
-  piece.hidden_start_m = 1.0;  // the low end in another walker's shadow
-  piece.hidden_end_m = 0.05;   // the high end seen free: the silhouette
-  const double yaw = 0.3;
-  const stereo::OrientedBox square{centre, yaw, 2.0 * r, 2.0 * r};
-  const auto truth = stereo::FrontSegmentFacing(square, lidar);
-  ASSERT_TRUE(truth.has_value());
-  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
-                          0.05 * 0.05};
-  const LidarPointModelOptions options;
-  const LidarSidePoint edge = FacingSidePoint(piece, walker, lidar, options);
-  EXPECT_LT((edge.point_m - truth->midpoint_m).norm(), 0.02);
-  const Vector2d across(-beam.y(), beam.x());
-  const Vector2d e = edge.point_m - truth->midpoint_m;
-  EXPECT_LT(e.dot(e),
-            9.0 * (across.dot(edge.covariance * across) + beam.dot(edge.covariance * beam)));
+  stereo::FrontSegment truth;
+  PairedBody walker;
+  Vector2d beam() const { return centre.normalized(); }
+  Vector2d across() const { return Vector2d(-beam().y(), beam().x()); }
+};
 
-  LidarObject unsaid = piece;
+WalkersEdge MakeWalkersEdge(double gap_rad, double hidden_end_m) {
+  WalkersEdge w;
+  const double r = WalkersEdge::kRadius;
+  const double centre_bearing = std::atan2(w.centre.y(), w.centre.x());
+  const double half_width = std::asin(r / w.centre.norm());
+  std::vector<Vector2d> returns;
+  for (double phi = centre_bearing + half_width - gap_rad; returns.size() < 4;
+       phi -= WalkersEdge::kBeamSpacingRad) {
+    const Vector2d d(std::cos(phi), std::sin(phi));
+    const double b = d.dot(w.centre);
+    const double h2 = r * r - (w.centre.squaredNorm() - b * b);
+    EXPECT_GT(h2, 0.0);
+    returns.push_back((b - std::sqrt(std::max(h2, 0.0))) * d);
+  }
+  for (const Vector2d& p : returns) w.piece.point_m += p / 4.0;
+  w.piece.front_start_m = returns.back();  // scan order: low bearing first
+  w.piece.front_end_m = returns.front();
+  w.piece.point_count = 4;
+  w.piece.point_covariance = Vector2d(0.0001, 0.002).asDiagonal();
+  w.piece.hidden_start_m = 1.0;
+  w.piece.hidden_end_m = hidden_end_m;
+  const stereo::OrientedBox square{w.centre, 0.3, 2.0 * r, 2.0 * r};
+  const auto truth = stereo::FrontSegmentFacing(square, w.lidar);
+  EXPECT_TRUE(truth.has_value());
+  if (truth) w.truth = *truth;
+  w.walker = PairedBody{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, w.truth.end_m - w.truth.start_m,
+                        0.05 * 0.05};
+  return w;
+}
+
+// A walker half behind another (a crowd's): the edge seen free, the silhouette half a beam
+// spacing past the last return (the model's mean: anywhere within the spacing). The edge model
+// puts the side's middle on the truth's within 2 cm; taken for the middle of an arc the scan
+// does not place (both ends seen free) it is 0.14 m off across the ray.
+TEST(LidarPointModelTest, AWalkersEdgeTakesTheCentreBehindIt) {
+  const WalkersEdge w = MakeWalkersEdge(0.5 * WalkersEdge::kBeamSpacingRad, 0.05);  // seen free
+  const LidarPointModelOptions options;
+  const LidarSidePoint edge = FacingSidePoint(w.piece, w.walker, w.lidar, options);
+  EXPECT_LT((edge.point_m - w.truth.midpoint_m).norm(), 0.02);
+  const Vector2d e = edge.point_m - w.truth.midpoint_m;
+  EXPECT_LT(e.dot(e), 9.0 * (w.across().dot(edge.covariance * w.across()) +
+                             w.beam().dot(edge.covariance * w.beam())));
+
+  LidarObject unsaid = w.piece;
   unsaid.hidden_start_m = 0.05;  // both ends free: the scan says nothing of which edge
-  const LidarSidePoint middle = FacingSidePoint(unsaid, walker, lidar, options);
-  EXPECT_GT(std::abs((middle.point_m - truth->midpoint_m).dot(across)), 0.12);
+  const LidarSidePoint middle = FacingSidePoint(unsaid, w.walker, w.lidar, options);
+  EXPECT_GT(std::abs((middle.point_m - w.truth.midpoint_m).dot(w.across())), 0.12);
 }
 
 // The same edge, its silhouette 0.15 m past the last return, hidden there by a nearer body
@@ -754,43 +768,14 @@ TEST(LidarPointModelTest, AWalkersEdgeTakesTheCentreBehindIt) {
 // sigmas across the ray (0.05 m off against 0.06 m of sigma), where one beam spacing's margin
 // put it 3.7 sigmas off (0.11 m against 0.03 m).
 TEST(LidarPointModelTest, AnEdgeInANearerBodysShadowMayReachAcrossIt) {
-  const double r = 0.3;
-  const Vector2d lidar(0.0, 0.0);
-  const Vector2d centre(18.0, 0.6);
-  const double dphi = 0.25 * kPi / 180.0;
-  const Vector2d beam = centre.normalized();
-  const Vector2d across(-beam.y(), beam.x());
-  const double centre_bearing = std::atan2(centre.y(), centre.x());
-  const double half_width = std::asin(r / centre.norm());
-  std::vector<Vector2d> returns;
-  for (double phi = centre_bearing + half_width - 0.15 / centre.norm(); returns.size() < 4;
-       phi -= dphi) {
-    const Vector2d d(std::cos(phi), std::sin(phi));
-    const double b = d.dot(centre);
-    const double h2 = r * r - (centre.squaredNorm() - b * b);
-    ASSERT_GT(h2, 0.0);
-    returns.push_back((b - std::sqrt(h2)) * d);
-  }
-  LidarObject piece;
-  for (const Vector2d& p : returns) piece.point_m += p / 4.0;
-  piece.front_start_m = returns.back();
-  piece.front_end_m = returns.front();
-  piece.point_count = 4;
-  piece.point_covariance = Vector2d(0.0001, 0.002).asDiagonal();
-  piece.hidden_start_m = 1.0;  // the low end in another walker's shadow
-  piece.hidden_end_m = 0.2;    // the high end in a nearer body's, 0.2 m of it
-  const stereo::OrientedBox square{centre, 0.3, 2.0 * r, 2.0 * r};
-  const auto truth = stereo::FrontSegmentFacing(square, lidar);
-  ASSERT_TRUE(truth.has_value());
-  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
-                          0.05 * 0.05};
-  const LidarSidePoint edge = FacingSidePoint(piece, walker, lidar, LidarPointModelOptions{});
-  const double error_across = (edge.point_m - truth->midpoint_m).dot(across);
-  const double sigma_across = std::sqrt(across.dot(edge.covariance * across));
+  const WalkersEdge w = MakeWalkersEdge(0.15 / Vector2d(18.0, 0.6).norm(), 0.2);
+  const LidarSidePoint edge = FacingSidePoint(w.piece, w.walker, w.lidar, LidarPointModelOptions{});
+  const double error_across = (edge.point_m - w.truth.midpoint_m).dot(w.across());
+  const double sigma_across = std::sqrt(w.across().dot(edge.covariance * w.across()));
   EXPECT_GT(std::abs(error_across), 0.03);  // the margin's middle, not the silhouette
   EXPECT_LT(std::abs(error_across), 3.0 * sigma_across);
   // The margin's spread: at least that of a uniform place over the 0.2 m past the spacing.
-  const double margin = 0.2 - dphi * centre.norm();
+  const double margin = 0.2 - WalkersEdge::kBeamSpacingRad * w.centre.norm();
   EXPECT_GT(sigma_across, margin / std::sqrt(12.0));
 }
 
