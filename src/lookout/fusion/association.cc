@@ -7,6 +7,16 @@
 
 namespace lookout::fusion {
 
+std::vector<std::optional<std::size_t>> OwnPriors(std::span<const PairPrior> priors,
+                                                  std::size_t stereo_count) {
+  std::vector<std::optional<std::size_t>> own(stereo_count);
+  for (std::size_t k = 0; k < priors.size(); ++k) {
+    const std::optional<std::size_t>& stereo = priors[k].stereo;
+    if (stereo && *stereo < stereo_count) own[*stereo] = k;
+  }
+  return own;
+}
+
 std::vector<AssociationPair> AssociateStereoToLidar(
     const std::vector<stereo::CartesianPoint>& stereo_points,
     const std::vector<stereo::CartesianPoint>& lidar_points, const AssociationGate& gate,
@@ -22,12 +32,12 @@ std::vector<AssociationPair> AssociateStereoToLidar(
   // Which priors hold each lidar point: how many, and per stereo point whether its own does.
   // O(priors x lidar points) once, not per pair.
   std::vector<int> holders(static_cast<std::size_t>(m), 0);
-  std::vector<std::optional<std::size_t>> own_prior(static_cast<std::size_t>(n));
+  const std::vector<std::optional<std::size_t>> own_prior =
+      OwnPriors(priors, static_cast<std::size_t>(n));
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> holds(
       static_cast<Eigen::Index>(priors.size()), m);
   for (std::size_t k = 0; k < priors.size(); ++k) {
     const PairPrior& p = priors[k];
-    if (p.stereo && *p.stereo < static_cast<std::size_t>(n)) own_prior[*p.stereo] = k;
     for (Eigen::Index j = 0; j < m; ++j) {
       const auto& l = lidar_points[static_cast<std::size_t>(j)];
       const bool held = gate.Accepts(

@@ -33,6 +33,12 @@ struct PairPrior {
   stereo::CartesianPoint point;
 };
 
+// Each of `stereo_count` stereo points' own camera track's prior: its index into `priors`, or
+// nullopt where the track has none (priors naming no stereo point, or one out of range, own
+// nothing). Pure.
+std::vector<std::optional<std::size_t>> OwnPriors(std::span<const PairPrior> priors,
+                                                  std::size_t stereo_count);
+
 // Pairs in increasing stereo index. Pure. `priors`: a stereo point whose own prior's gate does
 // not hold a lidar point does not pair with it when another camera track's prior holds it
 // (that body's own, its camera object missed or elsewhere); a lidar point no other prior holds

@@ -213,11 +213,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       options.history_disagreement_probability < 1.0
           ? ChiSquareQuantile(options.history_disagreement_probability, 2.0)
           : std::numeric_limits<double>::infinity();
-  // Each stereo point's own camera track's prior, if it has one.
-  std::vector<const stereo::CartesianPoint*> own_prior(stereo.size(), nullptr);
-  for (const PairPrior& p : priors) {
-    if (p.stereo && *p.stereo < stereo.size()) own_prior[*p.stereo] = &p.point;
-  }
+  const std::vector<std::optional<std::size_t>> own_prior = OwnPriors(priors, stereo.size());
   const std::vector<AssociationPair> pairs =
       AssociateStereoToLidar(stereo_points, lidar_points, gate, priors);
   result.pairs = pairs.size();
@@ -284,10 +280,11 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         f.point_m = position.mean;
         f.point_covariance = DisagreementScale(lidar_point, stereo_point, disagreement_quantile) *
                              position.covariance;
-        if (const stereo::CartesianPoint* prior = own_prior[*i]) {
+        if (const std::optional<std::size_t> k = own_prior[*i]) {
+          const stereo::CartesianPoint& prior = priors[*k].point;
           f.point_covariance *=
               DisagreementScale(Gaussian2{f.point_m, f.point_covariance},
-                                Gaussian2{prior->point_m, prior->covariance}, history_quantile);
+                                Gaussian2{prior.point_m, prior.covariance}, history_quantile);
         }
       }
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);

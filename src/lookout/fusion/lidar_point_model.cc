@@ -302,12 +302,12 @@ namespace {
 // walker half behind another shows the edge that sticks out. That other end's silhouette lies
 // within its own hidden extent, a beam spacing where the scan sees it free, more where a
 // nearer body's shadow covers part of the way (a walker between two others: taken within a
-// spacing, such pieces were 0.2-0.3 m off across against 0.04 m of sigma in the crowd). Where
-// neither can, the piece lies between the two silhouettes, the missing part shared between its ends
-// in a way the scan does not tell: anywhere on the near half-circle (for a whole arc, where nothing
-// is missing, one place). nullopt where both ends could hide the rest: the piece may be anywhere on
-// the circle and the radius-behind-the-middle model stands. The chord is the piece's extent across
-// the ray, clamped to the diameter.
+// spacing, such pieces were 0.2-0.3 m off across against 0.04 m of sigma in the crowd).
+// Where neither can, the piece lies between the two silhouettes, the missing part shared
+// between its ends in a way the scan does not tell: anywhere on the near half-circle (for a
+// whole arc, where nothing is missing, one place). nullopt where both ends could hide the
+// rest: the piece may be anywhere on the circle and the radius-behind-the-middle model
+// stands. The chord is the piece's extent across the ray, clamped to the diameter.
 struct ArcPiece {
   double chord_m = 0.0;
   double start_min_m = 0.0, start_max_m = 0.0;  // ArcPieceCentre's

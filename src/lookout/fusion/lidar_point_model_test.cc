@@ -768,7 +768,7 @@ TEST(LidarPointModelTest, AWalkersEdgeTakesTheCentreBehindIt) {
 // sigmas across the ray (0.05 m off against 0.06 m of sigma), where one beam spacing's margin
 // put it 3.7 sigmas off (0.11 m against 0.03 m).
 TEST(LidarPointModelTest, AnEdgeInANearerBodysShadowMayReachAcrossIt) {
-  const WalkersEdge w = MakeWalkersEdge(0.15 / Vector2d(18.0, 0.6).norm(), 0.2);
+  const WalkersEdge w = MakeWalkersEdge(0.15 / WalkersEdge{}.centre.norm(), 0.2);
   const LidarSidePoint edge = FacingSidePoint(w.piece, w.walker, w.lidar, LidarPointModelOptions{});
   const double error_across = (edge.point_m - w.truth.midpoint_m).dot(w.across());
   const double sigma_across = std::sqrt(w.across().dot(edge.covariance * w.across()));
