@@ -23,6 +23,8 @@ stereo::StereoPoint PredictStereoPoint(const stereo::StereoPoint& point, double 
   out.front.midpoint_m = carry(point.front.midpoint_m);
   out.front.midpoint_yaw_derivative = rotation * point.front.midpoint_yaw_derivative;
   out.velocity_mps = rotation * point.velocity_mps;
+  out.heading_share.other_side_offset_m = rotation * point.heading_share.other_side_offset_m;
+  out.heading_share.heading_slope_m = rotation * point.heading_share.heading_slope_m;
 
   const double position_noise = 0.5 * acceleration_sigma_mps2 * dt_s * dt_s;
   const double velocity_noise = acceleration_sigma_mps2 * dt_s;

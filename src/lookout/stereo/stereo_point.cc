@@ -55,8 +55,8 @@ double OtherSideProbability(const OrientedBox& box, const Matrix2d& center_covar
 
 std::optional<CartesianPoint> ExpectedFrontPoint(const OrientedBox& box,
                                                  const Matrix2d& center_covariance,
-                                                 double yaw_variance,
-                                                 const Vector2d& viewpoint_m) {
+                                                 double yaw_variance, const Vector2d& viewpoint_m,
+                                                 HeadingShare* share) {
   if (box.Contains(viewpoint_m)) return std::nullopt;
   const SideTest t(box, viewpoint_m);
   // The two candidate sides' middles in box axes: the end facing the viewpoint and the long
@@ -66,15 +66,16 @@ std::optional<CartesianPoint> ExpectedFrontPoint(const OrientedBox& box,
   const Vector2d& chosen = t.g >= 0.0 ? end_middle : side_middle;
   const Vector2d& other = t.g >= 0.0 ? side_middle : end_middle;
 
-  auto moments = [&](const Vector2d& middle_box, Vector2d& mean, Matrix2d& covariance) {
+  auto moments = [&](const Vector2d& middle_box, Vector2d& mean, Vector2d& dm_dyaw,
+                     Matrix2d& covariance) {
     mean = t.pose * middle_box;
-    const Vector2d dm_dyaw = t.rotation * Vector2d(-middle_box.y(), middle_box.x());
+    dm_dyaw = t.rotation * Vector2d(-middle_box.y(), middle_box.x());
     covariance = center_covariance + yaw_variance * dm_dyaw * dm_dyaw.transpose();
   };
-  Vector2d mean_a, mean_b;
+  Vector2d mean_a, mean_b, slope_a, slope_b;
   Matrix2d cov_a, cov_b;
-  moments(chosen, mean_a, cov_a);
-  moments(other, mean_b, cov_b);
+  moments(chosen, mean_a, slope_a, cov_a);
+  moments(other, mean_b, slope_b, cov_b);
 
   const double q = t.OtherSideProbability(center_covariance, yaw_variance);
   const Vector2d difference = mean_b - mean_a;
@@ -82,6 +83,9 @@ std::optional<CartesianPoint> ExpectedFrontPoint(const OrientedBox& box,
   point.point_m = mean_a + q * difference;
   point.covariance = (1.0 - q) * cov_a + q * cov_b +
                      q * (1.0 - q) * difference * difference.transpose();
+  if (share != nullptr) {
+    *share = HeadingShare{yaw_variance, q, difference, (1.0 - q) * slope_a + q * slope_b};
+  }
   return point;
 }
 
@@ -118,7 +122,7 @@ std::variant<StereoPoint, DropReason> ProjectStereoObject(const StereoObject& ob
   // ExpectedFrontPoint succeeds here: FrontSegmentFacing did, and they test the same box.
   const Matrix2d center_covariance = rotation * center_covariance_camera * rotation.transpose();
   p.point = *ExpectedFrontPoint(p.footprint, center_covariance, object.yaw_variance,
-                                lidar_mount.translation);
+                                lidar_mount.translation, &p.heading_share);
   p.polar = ToRangeBearing(p.point, lidar_mount);
   return p;
 }

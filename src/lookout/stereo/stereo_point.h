@@ -20,6 +20,21 @@
 
 namespace lookout::stereo {
 
+// The part of a front point's error that comes from the box's heading (ExpectedFrontPoint),
+// which every estimate built on the same heading shares: the camera's own point, and the
+// lidar's side point for a round body, whose square the camera's heading turns
+// (fusion::FacingSidePoint). Two such estimates are not independent, and their fusion must not
+// count the heading twice (fusion::SharedHeadingCovariance). Zero: nothing shared.
+struct HeadingShare {
+  double yaw_variance = 0.0;  // rad^2
+  // The side choice: q, the probability that the other side faces, and m_b - m_a, from the
+  // chosen side's middle to the other's.
+  double other_side_probability = 0.0;
+  Eigen::Vector2d other_side_offset_m = Eigen::Vector2d::Zero();
+  // The turn: d(mean)/d(yaw), the two sides' slopes weighted as the mean weighs them.
+  Eigen::Vector2d heading_slope_m = Eigen::Vector2d::Zero();
+};
+
 struct StereoPoint {
   std::uint32_t id = 0;  // the camera's track id
   ObjectClass object_class = ObjectClass::kUnknown;
@@ -36,6 +51,7 @@ struct StereoPoint {
   RangeBearing polar;     // the same point from the lidar origin, in the lidar frame
   double depth_m = 0.0;   // of the centre, along the camera's axis
   double yaw_variance = 0.0;  // of footprint.yaw_rad, rad^2 (the camera's)
+  HeadingShare heading_share;  // what of point's error the heading makes
 };
 
 // The expected front point of a box whose centre and heading are uncertain (vehicle frame;
@@ -49,7 +65,8 @@ struct StereoPoint {
 // viewpoint, and the point is the moments of the two-sided mixture:
 //     mean = (1 - q) m_a + q m_b,  cov = (1 - q) P_a + q P_b + q (1 - q) (m_b - m_a)(m_b - m_a)^T
 // the least-squares estimate of the true side's middle, with a covariance that is honest
-// about the ambiguity. nullopt when the viewpoint is inside the box.
+// about the ambiguity. nullopt when the viewpoint is inside the box. `share`, when given,
+// receives the heading's part of that error (HeadingShare).
 // The q of ExpectedFrontPoint alone: the probability that the side facing `viewpoint_m` is
 // not the one FrontSegmentFacing picks, from the box's centre and heading uncertainty. 0 when
 // the viewpoint is inside the box.
@@ -59,7 +76,8 @@ double OtherSideProbability(const OrientedBox& box, const Eigen::Matrix2d& cente
 std::optional<CartesianPoint> ExpectedFrontPoint(const OrientedBox& box,
                                                  const Eigen::Matrix2d& center_covariance,
                                                  double yaw_variance,
-                                                 const Eigen::Vector2d& viewpoint_m);
+                                                 const Eigen::Vector2d& viewpoint_m,
+                                                 HeadingShare* share = nullptr);
 
 // The object's point and its covariance in the vehicle frame (ExpectedFrontPoint, the centre's
 // covariance rotated from the camera frame into the vehicle frame), then its range and bearing

@@ -222,5 +222,33 @@ TEST(ExpectedFrontPointTest, OtherSideProbabilityGrowsTowardsTheCornerView) {
   EXPECT_EQ(OtherSideProbability(box, c, 1e-4, Vector2d(20.5, 0.2)), 0.0);  // inside
 }
 
+// The heading's share of the point's error: far from a corner view, the turn of the facing
+// side's middle, d(m)/d(yaw), against a central difference of the box turned; the side choice
+// none. On the diagonal: q one half, the offset from the chosen side's middle to the other's.
+TEST(ExpectedFrontPointTest, TheHeadingShareIsTheTurnsSlopeAndTheSideChoice) {
+  const Matrix2d c = 0.01 * Matrix2d::Identity();
+  const OrientedBox box{Vector2d(20.0, 1.0), 0.3, 4.0, 2.0};
+  HeadingShare share;
+  ASSERT_TRUE(ExpectedFrontPoint(box, c, 1e-4, Vector2d::Zero(), &share).has_value());
+  const double h = 1e-6;
+  OrientedBox left = box, right = box;
+  left.yaw_rad += h;
+  right.yaw_rad -= h;
+  const Vector2d slope = (ExpectedFrontPoint(left, c, 1e-4, Vector2d::Zero())->point_m -
+                          ExpectedFrontPoint(right, c, 1e-4, Vector2d::Zero())->point_m) /
+                         (2.0 * h);
+  EXPECT_LT((share.heading_slope_m - slope).norm(), 1e-6);
+  EXPECT_GT(share.heading_slope_m.norm(), 0.9);  // the rear's middle, 2 m from the centre
+  EXPECT_EQ(share.yaw_variance, 1e-4);
+  EXPECT_LT(share.other_side_probability, 1e-12);
+
+  const OrientedBox square_on{Vector2d(20.0, 0.0), 0.0, 4.0, 2.0};
+  const Vector2d diagonal = square_on.center_m + 10.0 * Vector2d(2.0, 1.0);
+  ASSERT_TRUE(ExpectedFrontPoint(square_on, c, 1e-4, diagonal, &share).has_value());
+  EXPECT_NEAR(share.other_side_probability, 0.5, 1e-12);
+  EXPECT_NEAR(std::abs(share.other_side_offset_m.dot(Vector2d(-2.0, 1.0).normalized())),
+              std::sqrt(5.0), 1e-9);
+}
+
 }  // namespace
 }  // namespace lookout::stereo
