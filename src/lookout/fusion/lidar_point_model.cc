@@ -234,7 +234,7 @@ Matrix2d LidarPointCovariance(const LidarObject& object, const PairedBody& body,
 }
 
 ArcCentre ArcPieceCentre(double radius_m, double chord_m, int returns, double start_min_m,
-                         double start_max_m) {
+                         double start_max_m, double radius_step_m) {
   const double r = radius_m;
   const int n = std::max(1, returns);
   // The near half-circle's depth in front of the centre, integrated across:
@@ -282,13 +282,12 @@ ArcCentre ArcPieceCentre(double radius_m, double chord_m, int returns, double st
   };
   ArcCentre out;
   out.mean_m = moments(r, start_min_m, start_max_m, &out.covariance);
-  // The side's middle lies a radius nearer than the centre: its depth behind the returns moves
-  // by d(depth)/dr - 1 per metre of radius, the chord as seen and the piece's place, anchored
-  // to the silhouette, with the radius.
-  const double dr = 1e-4 * std::max(r, 1e-3);
+  // The centre's depth behind the returns as the radius grows by the step, the chord as seen
+  // and the piece's place, anchored to the silhouette, scaled with it.
+  const double dr = std::max(radius_step_m, 1e-4 * std::max(r, 1e-3));
   const double scale = (r + dr) / r;
   const double deeper = moments(r + dr, start_min_m * scale, start_max_m * scale, nullptr).x();
-  out.side_radius_slope = (deeper - out.mean_m.x()) / dr - 1.0;
+  out.depth_radius_slope = (deeper - out.mean_m.x()) / dr;
   return out;
 }
 
@@ -305,16 +304,22 @@ namespace {
 // spacing, such pieces were 0.2-0.3 m off across against 0.04 m of sigma in the crowd).
 // Where neither can, the piece lies between the two silhouettes, the missing part shared
 // between its ends in a way the scan does not tell: anywhere on the near half-circle (for a
-// whole arc, where nothing is missing, one place). nullopt where both ends could hide the
-// rest: the piece may be anywhere on the circle and the radius-behind-the-middle model
-// stands. The chord is the piece's extent across the ray, clamped to the diameter.
+// whole arc, where nothing is missing, one place). Where both can, the rest may lie past
+// either end or be shared between them: anywhere on the near half-circle too. That is most
+// often a walker seen whole but for less than a beam spacing at each end (each free end's
+// extent, a spacing, holds the little that is missing), and also a piece between two nearer
+// bodies' shadows. Until 2026-12-06 both were taken a radius behind their middle instead: the
+// whole arcs a few centimetres too deep where the grazing returns split off, the pieces
+// between shadows as deep as the circle's flank, 0.13-0.17 m off along the ray against 3 cm of
+// sigma in the crowd (docs/fusion.md, "Two bodies in one pair"). The chord is the piece's
+// extent across the ray, clamped to the diameter.
 struct ArcPiece {
   double chord_m = 0.0;
   double start_min_m = 0.0, start_max_m = 0.0;  // ArcPieceCentre's
 };
 // `across`: the ray to the object turned a quarter left, unit.
-std::optional<ArcPiece> PlacedArcPiece(const LidarObject& object, const Vector2d& across,
-                                       double radius_m, double spacing_m) {
+ArcPiece PlacedArcPiece(const LidarObject& object, const Vector2d& across, double radius_m,
+                        double spacing_m) {
   const double chord = std::clamp(std::abs((object.front_end_m - object.front_start_m).dot(across)),
                                   0.0, 2.0 * radius_m);
   const double missing = 2.0 * radius_m - chord;
@@ -324,8 +329,7 @@ std::optional<ArcPiece> PlacedArcPiece(const LidarObject& object, const Vector2d
   const double hidden_high = start_low ? object.hidden_end_m : object.hidden_start_m;
   const bool low_holds = hidden_low >= missing;
   const bool high_holds = hidden_high >= missing;
-  if (low_holds && high_holds) return std::nullopt;
-  if (!low_holds && !high_holds) return ArcPiece{chord, -radius_m, radius_m - chord};
+  if (low_holds == high_holds) return ArcPiece{chord, -radius_m, radius_m - chord};
   // The silhouette lies within the other end's hidden extent: a beam spacing where the scan
   // sees it free, less than the missing part (it does not hold).
   const double edge = std::min(std::max(spacing_m, low_holds ? hidden_high : hidden_low), missing);
@@ -350,7 +354,6 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   const Vector2d beam = ray / range;
   const Vector2d across(-beam.y(), beam.x());
   const bool grid = object.cell_count > 0;
-  const double depth_r = grid ? kGridRoundBodyDepth : kSegmentationRoundBodyDepth;
   stereo::OrientedBox square;
   square.yaw_rad = std::atan2(body.facing_side_m.y(), body.facing_side_m.x());
   square.length_m = 2.0 * *radius;
@@ -370,31 +373,34 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   // had split off, and the range noise of one return along and half of it across made the
   // well-seen walkers' points 3-10 times too wide in variance (docs/fusion.md, "A whole arc's
   // centre").
+  // The radius's error: half the camera's size error.
+  const double radius_sigma = 0.5 * options.camera_size_sigma_m;
+  double depth_radius_slope = kGridRoundBodyDepth;
   const std::optional<ArcPiece> piece =
-      grid ? std::nullopt : PlacedArcPiece(object, across, *radius, spacing);
+      grid ? std::nullopt : std::optional(PlacedArcPiece(object, across, *radius, spacing));
   if (piece) {
     const int count = static_cast<int>(object.point_count);
-    const ArcCentre centre =
-        ArcPieceCentre(*radius, piece->chord_m, count, piece->start_min_m, piece->start_max_m);
+    const ArcCentre centre = ArcPieceCentre(*radius, piece->chord_m, count, piece->start_min_m,
+                                            piece->start_max_m, radius_sigma);
     const double returns = std::max(1, count);
-    const double side_radius_sigma = centre.side_radius_slope * 0.5 * options.camera_size_sigma_m;
+    depth_radius_slope = centre.depth_radius_slope;
     square.center_m = object.point_m - object.round_body_shift_m + centre.mean_m.x() * beam +
                       centre.mean_m.y() * across;
     Matrix2d own = centre.covariance;
-    own(0, 0) += noise / returns + side_radius_sigma * side_radius_sigma;
+    own(0, 0) += noise / returns;
     own(1, 1) += noise / returns;
     Matrix2d axes;
     axes.col(0) = beam;
     axes.col(1) = across;
     center_covariance = axes * own * axes.transpose();
   } else {
-    // The centre depth_r radii behind the point; its covariance, the arc's own: along the ray
-    // the range noise; across it the unseen rest of the diameter, the range noise's share at
-    // the chord's two ends and their beam spacing (the segmentation's formula for ends seen
-    // free), or a cell's width for the grid's. The radius's error comes below, once the
-    // square's facing side is known.
-    square.center_m = object.point_m + depth_r * *radius * beam;
-    const double var_along = noise + (grid ? spacing * spacing / 12.0 : 0.0);
+    // The grid's object (cells, no returns to place on the circle): the centre
+    // kGridRoundBodyDepth radii behind the point; its covariance, the arc's own: along the ray
+    // the range noise and a cell's width; across it the unseen rest of the diameter, the range
+    // noise's share at the chord's two ends and a cell's width. The radius's error comes
+    // below, once the square's facing side is known.
+    square.center_m = object.point_m + kGridRoundBodyDepth * *radius * beam;
+    const double var_along = noise + spacing * spacing / 12.0;
     const double var_across =
         HiddenExtentVariance(visible, 2.0 * *radius) + 0.5 * noise + spacing * spacing / 24.0;
     center_covariance =
@@ -403,17 +409,18 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   const std::optional<stereo::FrontSegment> front =
       stereo::FrontSegmentFacing(square, lidar_origin_m);
   if (!front) return seen;
-  if (!piece) {
-    // The radius's error (half the camera's size error) as the side's middle feels it: the
-    // centre moves depth_r times it away from the point and the side's middle the radius back
-    // towards it, so it moves by depth_r beam + m per metre of radius (m: from the centre to
-    // the facing side's middle), about nothing along the ray where the square faces the lidar
-    // square on. Taken whole along the ray, depth_r times, it made the walkers' side points
-    // 2-4 times too wide there (docs/fusion.md, "A whole arc's centre").
-    const Vector2d radius_slope = depth_r * beam + (front->midpoint_m - square.center_m) / *radius;
-    const double radius_sigma = 0.5 * options.camera_size_sigma_m;
-    center_covariance += radius_sigma * radius_sigma * radius_slope * radius_slope.transpose();
-  }
+  // The radius's error as the side's middle feels it: the centre moves depth_radius_slope
+  // times it away from the lidar (kGridRoundBodyDepth for the grid's point; where the circle
+  // puts it behind the scan's piece, ArcPieceCentre) and the side's middle the radius back
+  // towards it along its normal, so it moves by slope beam + m per metre of radius (m: from the
+  // centre to the facing side's middle): little along the ray where a whole arc's square faces
+  // the lidar square on, and across it where the square is turned. Taken whole along the ray
+  // it made the walkers' side points 2-4 times too wide there (docs/fusion.md, "A whole arc's
+  // centre"); taken along the ray only, for the scan's pieces, a turned square's side was
+  // 1.5 times too narrow across (docs/fusion.md, "Two bodies in one pair").
+  const Vector2d radius_slope =
+      depth_radius_slope * beam + (front->midpoint_m - square.center_m) / *radius;
+  center_covariance += radius_sigma * radius_sigma * radius_slope * radius_slope.transpose();
   // A chord longer than the diameter holds another body at one end or the other (a child
   // 6 cm from a pushchair, one segment to the scan): this body anywhere along it.
   if (visible > 2.0 * *radius) {
@@ -428,12 +435,13 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   if (!grid && depth_extent > *radius) {
     center_covariance += 0.25 * depth_extent * depth_extent * beam * beam.transpose();
   }
-  const std::optional<stereo::CartesianPoint> side =
-      stereo::ExpectedFrontPoint(square, center_covariance, body.yaw_variance, lidar_origin_m);
+  stereo::HeadingShare share;
+  const std::optional<stereo::CartesianPoint> side = stereo::ExpectedFrontPoint(
+      square, center_covariance, body.yaw_variance, lidar_origin_m, &share);
   if (!side) return seen;
   // The square's facing side as the front, so that its normal, a radius behind the middle,
   // leads to the square's centre (the tracking stage's centre of a walker).
-  return LidarSidePoint{side->point_m, side->covariance, front->start_m, front->end_m};
+  return LidarSidePoint{side->point_m, side->covariance, front->start_m, front->end_m, share};
 }
 
 }  // namespace
@@ -452,8 +460,11 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const Matrix2d& point_
   // A segment the scan took for a round body's arc, moved to its nearest point, goes back where
   // the returns put it when the camera's box is no circle.
   const Vector2d unmoved = round ? Vector2d::Zero() : Vector2d(-object.round_body_shift_m);
-  LidarSidePoint seen{object.point_m + unmoved, point_covariance, object.front_start_m + unmoved,
-                      object.front_end_m + unmoved};
+  LidarSidePoint seen{object.point_m + unmoved,
+                      point_covariance,
+                      object.front_start_m + unmoved,
+                      object.front_end_m + unmoved,
+                      {}};
   const double facing = body.facing_side_m.norm();
   if (round) return TurnedSquareSidePoint(object, seen, body, lidar_origin_m, options);
   if (!options.corner_view || !(facing > 0.0)) return seen;
@@ -515,7 +526,9 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const Matrix2d& point_
       corner + half * away,
       (corner_variance + half * half * heading_variance) * u * u.transpose() +
           (offset_variance + size_variance) * away * away.transpose(),
-      corner, corner + other_length * away};
+      corner,
+      corner + other_length * away,
+      {}};
 
   // The box on the segment, and the truth's rule on it.
   stereo::OrientedBox box;

@@ -27,6 +27,7 @@
 #include "lookout/core/class_footprint.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/object_class.h"
+#include "lookout/stereo/stereo_point.h"
 
 namespace lookout::fusion {
 
@@ -51,11 +52,12 @@ struct LidarPointModelOptions {
   // segment's own covariance: a two-return arc's direction is noise, and the hidden extents
   // along it (up to a car's side) put the camera's depth in charge where the lidar measured
   // it; in the crowd, a walker's camera object 1 m off so placed made a track of its own
-  // (docs/fusion.md, "A walker's square turned by the camera's heading"). A piece of the arc
-  // the scan places on the circle (at its edge: one end in a nearer body's shadow, the other
-  // seen free, the silhouette; or between its silhouettes: both ends seen free) has the centre
-  // where the circle puts it behind that piece (ArcPieceCentre), across and in depth, not a
-  // radius behind its middle (docs/fusion.md, "A walker's edge", "A whole arc's centre").
+  // (docs/fusion.md, "A walker's square turned by the camera's heading"). The scan's arc, or
+  // a piece of it, has the centre where the circle puts it behind that piece
+  // (ArcPieceCentre), across and in depth: at its edge where one end is in a nearer body's
+  // shadow that could hide the rest and the other is not, anywhere on the near half-circle
+  // otherwise. A grid object (cells, no returns) has it depth_r radii behind its point
+  // (docs/fusion.md, "A walker's edge", "A whole arc's centre", "Two bodies in one pair").
   bool round_body_heading = true;
   // The scanner's range noise (1 sigma; the simulator's), for the round body's arc: a
   // LidarObject carries none.
@@ -150,17 +152,20 @@ Eigen::Matrix2d RoundBodyCovariance(double radius_m, const Eigen::Vector2d& ray,
 // [start_min_m, start_max_m] (offsets from the centre across the ray, within [-r, r - chord]),
 // uniformly: the centre's mean offset from the returns' mean (their mean depth, their chord's
 // middle) and its covariance, in (along the ray away from the lidar, across it) axes, the across
-// axis the ray turned a quarter left; and how the side's middle facing
-// the lidar (a radius nearer than the centre) moves behind the returns per metre of error in
-// the radius, the chord as seen. A whole arc densely sampled: (pi / 4) r deep, across 0; an
-// edge piece: shallower (0.15 m for 0.1 m of a 0.3 m circle), r - c / 2 across.
+// axis the ray turned a quarter left; and how far the centre lies behind the returns per metre
+// of error in the radius, the chord as seen and the piece's place anchored to the silhouette:
+// the secant over `radius_step_m` (the radius's own error, 1 sigma), not the derivative, which
+// is infinite where the piece's end reaches the far silhouette (a return there lies at a depth
+// that goes as the square root of the radius's change). A whole arc densely sampled: (pi / 4) r
+// deep, across 0; an edge piece: shallower (0.15 m for 0.1 m of a 0.3 m circle), r - c / 2
+// across.
 struct ArcCentre {
   Eigen::Vector2d mean_m = Eigen::Vector2d::Zero();
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
-  double side_radius_slope = 0.0;
+  double depth_radius_slope = 0.0;
 };
 ArcCentre ArcPieceCentre(double radius_m, double chord_m, int returns, double start_min_m,
-                         double start_max_m);
+                         double start_max_m, double radius_step_m);
 
 // What the camera says of the body a lidar object was paired with: its class and its box's
 // sides (0 when there is no box).
@@ -206,6 +211,9 @@ struct LidarSidePoint {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
   Eigen::Vector2d front_start_m = Eigen::Vector2d::Zero();
   Eigen::Vector2d front_end_m = Eigen::Vector2d::Zero();
+  // What of the error the camera's heading makes, where the point was turned by it (a round
+  // body's square): shared with the camera's own point (shared_heading.h). Zero elsewhere.
+  stereo::HeadingShare heading_share;
 };
 
 // The lidar's estimate of the middle of the side facing it, for an object paired with `body`:

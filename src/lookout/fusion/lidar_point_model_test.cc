@@ -456,8 +456,8 @@ TEST(LidarPointModelTest, AWalkersSquareTurnsWithTheCamerasHeading) {
 // The turned square's covariance: with the camera's heading to 0.05 rad and the whole chord
 // seen, centimetres across the ray where the heading unknown gives 0.13 m; a chord of half the
 // diameter, both ends seen free, lies anywhere between the silhouettes: the unseen half's
-// (0.3 m)^2 / 12 across, give or take the range noise's terms (the whole arc's half of one
-// return's variance across, the piece's the mean of its returns'), and along the ray the depth
+// (0.3 m)^2 / 12 across, give or take the range noise's terms (the mean of the whole arc's 12
+// returns and of the piece's 6), and along the ray the depth
 // that goes with it (a piece off the ray's middle lies deeper), more than the whole arc's by
 // about a centimetre's standard deviation; one longer than the diameter, the surplus's.
 TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
@@ -469,38 +469,42 @@ TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
   const auto truth = stereo::FrontSegmentFacing(square, lidar);
   const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
                           0.05 * 0.05};
-  const LidarObject whole = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, r));
+  LidarObject whole = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, r));
+  whole.point_count = 12;
   const Matrix2d p = FacingSidePoint(whole, walker, lidar, options).covariance;
   EXPECT_LT(std::sqrt(p(1, 1)), 0.03);
   EXPECT_GT(std::sqrt(RoundBodyCovariance(r, centre - lidar, kSegmentationRoundBodyDepth)(1, 1)),
             0.12);
-  const LidarObject half = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
+  LidarObject half = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
+  half.point_count = 6;
   const Matrix2d q = FacingSidePoint(half, walker, lidar, options).covariance;
   const double noise = options.range_sigma_m * options.range_sigma_m;
   EXPECT_NEAR(q(1, 1) - p(1, 1), r * r / 12.0, noise);
   EXPECT_GT(q(0, 0), p(0, 0));
   EXPECT_LT(q(0, 0) - p(0, 0), 0.015 * 0.015);
   // A chord of 0.9 m holds another body besides the 0.6 m one: (0.3 m)^2 / 12 along it.
-  const LidarObject two = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.45));
+  LidarObject two = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.45));
+  two.point_count = whole.point_count;
   const Matrix2d t = FacingSidePoint(two, walker, lidar, options).covariance;
   EXPECT_NEAR(t(1, 1) - p(1, 1), 0.3 * 0.3 / 12.0, 1e-9);
 }
 
-// The radius's error as the side's middle feels it (the whole arc, the radius-behind-the-middle
-// model): the centre lies a radius behind the arc's nearest point and the side's middle a
-// radius in front of the centre, so where the camera's square faces the lidar square on, the
-// camera's size error moves the side's middle along the ray not at all: the range noise alone
-// is left there (it was that and the radius's error whole, 0.05 m, before). Turned 40 degrees,
-// the side's middle lies r cos 40 in front of the centre and r sin 40 to the side: the radius's
-// error moves it by (1 - cos 40, sin 40) per metre.
-TEST(LidarPointModelTest, TheRadiusErrorCancelsWhereTheSquareFacesSquareOn) {
+// The radius's error as the side's middle feels it, a whole arc of 12 returns: the centre lies
+// behind the returns by what ArcPieceCentre's secant says per metre of radius, and the side's
+// middle a radius in front of the centre along its normal. Square on, the side moves along
+// the ray by the slope less one and not across it; turned 40 degrees, the side's middle lies
+// r cos 40 in front of the centre and r sin 40 to the side, and moves by (slope - cos 40,
+// sin 40) per metre: across the ray too (it was taken along the ray alone before 2026-12-06).
+TEST(LidarPointModelTest, TheRadiusErrorMovesTheSideAlongItsNormal) {
   const double r = 0.3;
   const Vector2d lidar(0.0, 0.0);
   const Vector2d centre(12.0, 0.0);
   const LidarPointModelOptions options;
-  const double noise = options.range_sigma_m * options.range_sigma_m;
-  const double size_variance = 0.25 * options.camera_size_sigma_m * options.camera_size_sigma_m;
-  const LidarObject whole = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, r));
+  const double radius_sigma = 0.5 * options.camera_size_sigma_m;
+  const double size_variance = radius_sigma * radius_sigma;
+  LidarObject whole = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, r));
+  whole.point_count = 12;
+  const double slope = ArcPieceCentre(r, 2.0 * r, 12, -r, -r, radius_sigma).depth_radius_slope;
   const auto side_variances = [&](double yaw) {
     const stereo::OrientedBox square{centre, yaw, 2.0 * r, 2.0 * r};
     const auto truth = stereo::FrontSegmentFacing(square, lidar);
@@ -510,18 +514,21 @@ TEST(LidarPointModelTest, TheRadiusErrorCancelsWhereTheSquareFacesSquareOn) {
     return Vector2d(c(0, 0), c(1, 1));
   };
   const Vector2d square_on = side_variances(0.0);
-  EXPECT_NEAR(square_on.x(), noise, 1e-6);
   const double turn = 40.0 * kPi / 180.0;
   const Vector2d turned = side_variances(turn);
-  const double along = 1.0 - std::cos(turn);
+  const double along_on = slope - 1.0;
+  const double along = slope - std::cos(turn);
   const double across = std::sin(turn);
-  EXPECT_NEAR(turned.x() - square_on.x(), size_variance * along * along, 1e-6);
+  EXPECT_NEAR(turned.x() - square_on.x(), size_variance * (along * along - along_on * along_on),
+              1e-6);
   EXPECT_NEAR(turned.y() - square_on.y(), size_variance * across * across, 1e-6);
+  EXPECT_GT(turned.y() - square_on.y(), 0.03 * 0.03);
 }
 
 // A segment deeper along the ray than a radius is no arc of one circle: a lamp post 0.5 m in
 // front of a walker, one segment to the scan. The walker's side is at either end of that depth:
-// (0.5 m / 2)^2 along the ray. A segment 0.2 m deep, within a radius, gets nothing of it.
+// (0.5 m / 2)^2 along the ray. A segment 0.2 m deep, within a radius, gets nothing of it: a few
+// centimetres along, where the piece may lie on the circle.
 TEST(LidarPointModelTest, ASegmentDeeperThanARadiusHoldsAnotherBody) {
   const double r = 0.3;
   const Vector2d lidar(0.0, 0.0);
@@ -530,12 +537,12 @@ TEST(LidarPointModelTest, ASegmentDeeperThanARadiusHoldsAnotherBody) {
                           0.05 * 0.05};
   const auto along_variance = [&](double depth) {
     LidarObject o = SegmentObject(Vector2d(20.0, 0.0), Vector2d(0.5 * depth, 0.1));
-    o.hidden_start_m = o.hidden_end_m = 5.0;  // a piece the scan does not place
+    o.hidden_start_m = o.hidden_end_m = 5.0;  // a piece anywhere on the near half-circle
     return FacingSidePoint(o, walker, lidar, options).covariance(0, 0);
   };
-  EXPECT_LT(along_variance(0.2), 0.01 * 0.01 + 0.03 * 0.03);
+  EXPECT_LT(along_variance(0.2), 0.05 * 0.05);
   EXPECT_GT(along_variance(0.5), 0.25 * 0.25);
-  EXPECT_LT(along_variance(0.5), 0.25 * 0.25 + along_variance(0.2) + 1e-3);
+  EXPECT_LT(along_variance(0.5), 0.25 * 0.25 + 0.05 * 0.05);
 }
 
 // The corner lies anywhere in what the scan could not see past the segment's end: 0.42 m of
@@ -640,22 +647,23 @@ double LiteralArcDepth(double r, double a, double c) {
 // (10,001 returns: the continuous mean within 1e-4).
 TEST(LidarPointModelTest, ArcPieceCentreIsWhereTheCircleIs) {
   const double r = 0.3;
+  const double step = 0.05;  // the radius's error, half the camera's 0.1 m of size
   const int dense = 10'001;
-  const ArcCentre whole = ArcPieceCentre(r, 2.0 * r, dense, -r, -r);
+  const ArcCentre whole = ArcPieceCentre(r, 2.0 * r, dense, -r, -r, step);
   EXPECT_NEAR(whole.mean_m.x(), 0.25 * kPi * r, 1e-4);
   EXPECT_NEAR(whole.mean_m.y(), 0.0, 1e-12);
   EXPECT_LT(whole.covariance.norm(), 1e-12);
 
   const double c = 0.1;
-  const ArcCentre low_edge = ArcPieceCentre(r, c, dense, -r, -r);
+  const ArcCentre low_edge = ArcPieceCentre(r, c, dense, -r, -r, step);
   EXPECT_NEAR(low_edge.mean_m.x(), LiteralArcDepth(r, -r, c), 1e-4);
   EXPECT_NEAR(low_edge.mean_m.y(), r - 0.5 * c, 1e-12);  // the centre towards the hidden side
-  const ArcCentre high_edge = ArcPieceCentre(r, c, dense, r - c, r - c);
+  const ArcCentre high_edge = ArcPieceCentre(r, c, dense, r - c, r - c, step);
   EXPECT_NEAR(high_edge.mean_m.x(), low_edge.mean_m.x(), 1e-12);
   EXPECT_NEAR(high_edge.mean_m.y(), -(r - 0.5 * c), 1e-12);
   EXPECT_LT(low_edge.mean_m.x(), 0.55 * r);  // 0.155 m, where a radius (0.3 m) was taken
   // Two returns, at the silhouette and 0.1 m in: their own mean, not the arc's.
-  EXPECT_NEAR(ArcPieceCentre(r, c, 2, -r, -r).mean_m.x(),
+  EXPECT_NEAR(ArcPieceCentre(r, c, 2, -r, -r, step).mean_m.x(),
               0.5 * (0.0 + std::sqrt(r * r - (r - c) * (r - c))), 1e-12);
 
   // Beyond 32 returns the trapezoid rule stands in for the returns' own mean: within a
@@ -667,19 +675,33 @@ TEST(LidarPointModelTest, ArcPieceCentreIsWhereTheCircleIs) {
         const double y = -r + 0.01 + chord * k / (returns - 1);
         mean += std::sqrt(std::max(0.0, r * r - y * y)) / returns;
       }
-      EXPECT_NEAR(ArcPieceCentre(r, chord, returns, -r + 0.01, -r + 0.01).mean_m.x(), mean, 1e-3)
+      EXPECT_NEAR(ArcPieceCentre(r, chord, returns, -r + 0.01, -r + 0.01, step).mean_m.x(), mean,
+                  1e-3)
           << returns << " returns over " << chord << " m";
     }
   }
 
-  // The side's sensitivity to the radius against the literal one's finite difference.
-  const double dr = 1e-4;
-  const double literal_slope =
-      (LiteralArcDepth(r + dr, -r - dr, c) - LiteralArcDepth(r, -r, c)) / dr - 1.0;
-  EXPECT_NEAR(low_edge.side_radius_slope, literal_slope, 1e-2);
+  // How far the centre lies behind the returns per metre of radius: the secant over the step
+  // against the literal integral's, an edge piece anchored to its silhouette, and a whole arc,
+  // whose last return reaches the far silhouette: there the derivative is infinite (the depth
+  // at the end goes as sqrt(4 r dr)), the secant over 1e-5 m of radius 30 times what it is
+  // over the radius's own error, which a whole arc's centre behind its returns moves by
+  // (pi / 4 and a little, the returns near the far silhouette). Infinite for any number of
+  // returns, it weighs with their fewness: a walker's dozen, ten times over.
+  const double literal_edge =
+      (LiteralArcDepth(r + step, -r - step, c) - LiteralArcDepth(r, -r, c)) / step;
+  EXPECT_NEAR(low_edge.depth_radius_slope, literal_edge, 1e-2);
+  const double literal_whole =
+      (LiteralArcDepth(r + step, -r - step, 2.0 * r) - LiteralArcDepth(r, -r, 2.0 * r)) / step;
+  EXPECT_NEAR(whole.depth_radius_slope, literal_whole, 1e-2);
+  EXPECT_GT(whole.depth_radius_slope, 0.25 * kPi);
+  EXPECT_LT(whole.depth_radius_slope, 1.5);
+  const int walker = 12;  // returns on a walker's whole arc at 12 m
+  EXPECT_GT(ArcPieceCentre(r, 2.0 * r, walker, -r, -r, 1e-5).depth_radius_slope,
+            10.0 * ArcPieceCentre(r, 2.0 * r, walker, -r, -r, step).depth_radius_slope);
 
   // Anywhere on the circle: the moments of the piece's place, uniform, against 400 places.
-  const ArcCentre anywhere = ArcPieceCentre(r, c, dense, -r, r - c);
+  const ArcCentre anywhere = ArcPieceCentre(r, c, dense, -r, r - c, step);
   constexpr int kPlaces = 400;
   double mean_depth = 0.0, depth2 = 0.0, across2 = 0.0;
   for (int k = 0; k < kPlaces; ++k) {
