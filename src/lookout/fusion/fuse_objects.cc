@@ -11,6 +11,7 @@
 #include "lookout/fusion/gate.h"
 #include "lookout/fusion/gaussian_fusion.h"
 #include "lookout/fusion/lidar_point_model.h"
+#include "lookout/fusion/shared_heading.h"
 #include "lookout/stereo/stereo_validation.h"
 
 namespace lookout::fusion {
@@ -209,6 +210,9 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       options.disagreement_probability < 1.0
           ? ChiSquareQuantile(options.disagreement_probability, 2.0)
           : std::numeric_limits<double>::infinity();
+  const double two_bodies_quantile = options.two_bodies_probability < 1.0
+                                         ? ChiSquareQuantile(options.two_bodies_probability, 2.0)
+                                         : std::numeric_limits<double>::infinity();
   const double history_quantile =
       options.history_disagreement_probability < 1.0
           ? ChiSquareQuantile(options.history_disagreement_probability, 2.0)
@@ -274,17 +278,25 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                                                     lidar.mount.translation, options.lidar_point);
         const Gaussian2 lidar_point{side.point_m, side.covariance};
         const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};
-        const Gaussian2 position = FuseGaussians(lidar_point, stereo_point);
+        // The camera's heading, where it turned the lidar's point too, counted once.
+        const Matrix2d cross = SharedHeadingCovariance(side.heading_share, s.heading_share);
+        const Gaussian2 position = FuseCorrelated(lidar_point, stereo_point, cross);
         f.front_start_m = side.front_start_m;
         f.front_end_m = side.front_end_m;
         f.point_m = position.mean;
-        f.point_covariance = DisagreementScale(lidar_point, stereo_point, disagreement_quantile) *
-                             position.covariance;
-        if (const std::optional<std::size_t> k = own_prior[*i]) {
+        f.point_covariance = TwoBodiesMixture(
+            Gaussian2{position.mean,
+                      DisagreementScale(lidar_point, stereo_point, disagreement_quantile, cross) *
+                          position.covariance},
+            lidar_point, stereo_point, two_bodies_quantile, cross);
+        const std::optional<std::size_t> k = own_prior[*i];
+        if (k && options.history_disagreement_probability < 1.0) {
           const stereo::CartesianPoint& prior = priors[*k].point;
-          f.point_covariance *=
-              DisagreementScale(Gaussian2{f.point_m, f.point_covariance},
-                                Gaussian2{prior.point_m, prior.covariance}, history_quantile);
+          const Gaussian2 history{prior.point_m, prior.covariance};
+          f.point_covariance *= DisagreementScale(Gaussian2{f.point_m, f.point_covariance}, history,
+                                                  history_quantile);
+          f.point_covariance = DisagreementMixture(Gaussian2{f.point_m, f.point_covariance},
+                                                   history, two_bodies_quantile);
         }
       }
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);

@@ -122,11 +122,42 @@ TEST(FuseObjectsTest, APairThatDisagreesHoldsItsDisagreement) {
   EXPECT_LT((off.frame.objects[0].point_covariance - expected.covariance).norm(), 1e-9);
 }
 
+// A pair inside the gate (which allows point_definition_sigma_m) whose points disagree beyond
+// the 99.9 % quantile under their own covariances (1.2 m apart along x against 0.1 m^2, d^2
+// about 14.6): one of the two is on something else. The fused point stays; its covariance,
+// scaled as any disagreement's, becomes TwoBodiesMixture's, as wide along x as the two points'
+// spread about it allows. With the option off it is the scaled covariance alone.
+TEST(FuseObjectsTest, APairTooFarApartForItsCovariancesMayBeTwoBodies) {
+  const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(16.2, 0.1))});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  FusionOptions options = CovariancesAsGiven();
+  const Gaussian2 l{lidar.objects[0].point_m, lidar.objects[0].point_covariance};
+  const Gaussian2 s{stereo[0].point.point_m, stereo[0].point.covariance};
+  const double two_bodies = ChiSquareQuantile(options.two_bodies_probability, 2.0);
+  ASSERT_GT(MahalanobisSquared(l.mean - s.mean, l.covariance + s.covariance), two_bodies);
+  const Gaussian2 fused = FuseGaussians(l, s);
+  const Gaussian2 scaled{
+      fused.mean,
+      DisagreementScale(l, s, ChiSquareQuantile(options.disagreement_probability, 2.0)) *
+          fused.covariance};
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(result.pairs, 1u);
+  const FusedObject& f = result.frame.objects[0];
+  EXPECT_LT((f.point_m - fused.mean).norm(), 1e-9);
+  EXPECT_LT((f.point_covariance - TwoBodiesMixture(scaled, l, s, two_bodies)).norm(), 1e-9);
+  EXPECT_GT(f.point_covariance(0, 0), 2.0 * scaled.covariance(0, 0));
+  options.two_bodies_probability = 1.0;
+  const FuseObjectsResult off = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(off.pairs, 1u);
+  EXPECT_LT((off.frame.objects[0].point_covariance - scaled.covariance).norm(), 1e-9);
+}
+
 // A pair that agrees within its own covariances, where its camera track's prior (its last pair
 // predicted to this stamp) puts the body 0.6 m away against 5 cm: the fused point stays, its
-// covariance holds the disagreement with the body's history, d^2 / quantile under the fused and
-// the prior's covariances summed. A prior that agrees, another camera track's prior, or the
-// option off leave it as the pair alone makes it.
+// covariance is scaled by d^2 / quantile under the fused and the prior's covariances summed,
+// and, the two still further apart than the 99.9 % point, becomes DisagreementMixture's with
+// the prior: spread along the 0.6 m to it. A prior that agrees, another camera track's prior,
+// or the option off leave it as the pair alone makes it.
 TEST(FuseObjectsTest, APairItsCameraTrackPutsElsewhereHoldsTheDisagreement) {
   const LidarObjectFrame lidar = Frame({MakeLidar(7, Vector2d(15.1, 0.05))});
   const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
@@ -148,7 +179,16 @@ TEST(FuseObjectsTest, APairItsCameraTrackPutsElsewhereHoldsTheDisagreement) {
   ASSERT_GT(d2, 2.0 * quantile);
   const FusedObject widened = fused_with({PairPrior{0, elsewhere}});
   EXPECT_LT((widened.point_m - f.point_m).norm(), 1e-12);
-  EXPECT_LT((widened.point_covariance - d2 / quantile * f.point_covariance).norm(), 1e-12);
+  const Gaussian2 history{elsewhere.point_m, elsewhere.covariance};
+  const Gaussian2 scaled{f.point_m, d2 / quantile * f.point_covariance};
+  const double two_bodies = ChiSquareQuantile(options.two_bodies_probability, 2.0);
+  const double scaled_d2 =
+      MahalanobisSquared(history.mean - scaled.mean, history.covariance + scaled.covariance);
+  ASSERT_GT(scaled_d2, two_bodies);
+  EXPECT_LT((widened.point_covariance - DisagreementMixture(scaled, history, two_bodies)).norm(),
+            1e-12);
+  // Across the offset (y) it holds the offset's share: more than (1 - q / d^2) 0.36 m^2.
+  EXPECT_GT(widened.point_covariance(1, 1), (1.0 - two_bodies / scaled_d2) * 0.36);
 
   const stereo::CartesianPoint agreeing{f.point_m + Vector2d(0.0, 0.02), elsewhere.covariance};
   EXPECT_LT((fused_with({PairPrior{0, agreeing}}).point_covariance - f.point_covariance).norm(),

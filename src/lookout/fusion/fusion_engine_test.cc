@@ -145,6 +145,9 @@ TEST(FusionEngineTest, InvalidOptionsNameTheField) {
   FusionOptions history;
   history.history_disagreement_probability = 1.5;
   expect_rejected(history, "history_disagreement_probability");
+  FusionOptions two_bodies;
+  two_bodies.two_bodies_probability = 0.0;
+  expect_rejected(two_bodies, "two_bodies_probability");
 }
 
 // Two walkers standing one behind the other on the camera's ray, A at 22.5 m and B 0.9 m

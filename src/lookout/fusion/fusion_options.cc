@@ -26,6 +26,8 @@ void FusionOptions::Validate() const {
   Require(max_stereo_age_s >= 0.0, "max_stereo_age_s", "must be >= 0");
   Require(acceleration_sigma_mps2 >= 0.0, "acceleration_sigma_mps2", "must be >= 0");
   Require(pair_memory_s >= 0.0, "pair_memory_s", "must be >= 0");
+  Require(two_bodies_probability > 0.0 && two_bodies_probability <= 1.0, "two_bodies_probability",
+          "must be in (0, 1]");
   Require(history_disagreement_probability > 0.0 && history_disagreement_probability <= 1.0,
           "history_disagreement_probability", "must be in (0, 1]");
   Require(stereo_class_confidence > 0.0 && stereo_class_confidence <= 1.0,

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <cmath>
+#include <vector>
 
 #include "lookout/core/random.h"
 
@@ -107,6 +110,155 @@ TEST(GaussianFusionTest, ADisagreementBeyondTheQuantileScalesTheCovariance) {
   EXPECT_LT((scaled.covariance - scale * fused.covariance).norm(), 1e-12);
   const Gaussian2 near{Vector2d(10.4, 0.0), stereo.covariance};
   EXPECT_EQ(DisagreementScale(lidar, near, quantile), 1.0);
+}
+
+// Correlated errors (Bar-Shalom and Campo): with no cross-covariance it is FuseGaussians; where
+// b repeats a's error whole (B = C = A) the fused covariance is A, nothing averaged away; and
+// against 200,000 draws of correlated errors, the fused error's covariance is the one it
+// states (within 4 standard errors), where FuseGaussians' would state too little.
+TEST(GaussianFusionTest, FuseCorrelatedStatesTheCovarianceOfItsError) {
+  Gaussian2 a{Vector2d(3.0, -1.0), Matrix2d()};
+  a.covariance << 0.04, 0.01, 0.01, 0.02;
+  Gaussian2 b{Vector2d(3.2, -0.9), Matrix2d()};
+  b.covariance << 0.09, -0.01, -0.01, 0.03;
+  const Gaussian2 independent = FuseCorrelated(a, b, Matrix2d::Zero());
+  const Gaussian2 plain = FuseGaussians(a, b);
+  EXPECT_LT((independent.mean - plain.mean).norm(), 1e-12);
+  EXPECT_LT((independent.covariance - plain.covariance).norm(), 1e-12);
+  // B = C = A, a hair less for S = A + B - C - C^T to be invertible.
+  const Matrix2d almost_a = a.covariance - 1e-9 * Matrix2d::Identity();
+  const Gaussian2 repeated = FuseCorrelated(a, Gaussian2{b.mean, a.covariance}, almost_a);
+  EXPECT_LT((repeated.covariance - a.covariance).norm(), 1e-6);
+
+  Matrix2d cross;
+  cross << 0.015, 0.002, 0.001, 0.008;  // correlation about 0.3
+  const Gaussian2 fused = FuseCorrelated(a, b, cross);
+  Eigen::Matrix4d joint;
+  joint << a.covariance, cross, cross.transpose(), b.covariance;
+  const Eigen::Matrix4d lower = joint.llt().matrixL();
+  const std::uint64_t seed = 20261208;
+  Rng rng(seed);
+  const int samples = 200000;
+  Matrix2d sum = Matrix2d::Zero(), sum_squares = Matrix2d::Zero();
+  for (int k = 0; k < samples; ++k) {
+    const Eigen::Vector4d e =
+        lower * Eigen::Vector4d(rng.Normal(), rng.Normal(), rng.Normal(), rng.Normal());
+    const Gaussian2 draw = FuseCorrelated(Gaussian2{a.mean + e.head<2>(), a.covariance},
+                                          Gaussian2{b.mean + e.tail<2>(), b.covariance}, cross);
+    const Vector2d error = draw.mean - fused.mean;  // both means' errors drawn about zero
+    const Matrix2d product = error * error.transpose();
+    sum += product;
+    sum_squares += product.cwiseProduct(product);
+  }
+  const Matrix2d moment = sum / samples;
+  const Matrix2d standard_error =
+      ((sum_squares / samples - moment.cwiseProduct(moment)) / samples).cwiseSqrt();
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_NEAR(moment(i, j), fused.covariance(i, j), 4.0 * standard_error(i, j))
+          << "seed " << seed << ", element (" << i << ", " << j << ")";
+    }
+  }
+  EXPECT_GT(fused.covariance.trace(), 1.2 * plain.covariance.trace());
+}
+
+// The second moment about a point of samples drawn from a weighted set of Gaussians (the
+// mixture the closed forms below stand for, drawn), and each element's standard error from
+// the samples' own spread. `weights` sum to 1.
+struct SampledMoment {
+  Matrix2d moment = Matrix2d::Zero();
+  Matrix2d standard_error = Matrix2d::Zero();
+};
+SampledMoment SampleSecondMoment(const Vector2d& about, const std::vector<Gaussian2>& components,
+                                 const std::vector<double>& weights, int samples, Rng& rng) {
+  Matrix2d sum = Matrix2d::Zero();
+  Matrix2d sum_squares = Matrix2d::Zero();
+  for (int k = 0; k < samples; ++k) {
+    double u = rng.Uniform(0.0, 1.0);
+    std::size_t c = 0;
+    while (c + 1 < components.size() && u >= weights[c]) u -= weights[c++];
+    const Eigen::LLT<Matrix2d> chol(components[c].covariance);
+    const Vector2d x = components[c].mean + chol.matrixL() * Vector2d(rng.Normal(), rng.Normal());
+    const Matrix2d product = (x - about) * (x - about).transpose();
+    sum += product;
+    sum_squares += product.cwiseProduct(product);
+  }
+  const double n = samples;
+  SampledMoment out;
+  out.moment = sum / n;
+  out.standard_error = ((sum_squares / n - out.moment.cwiseProduct(out.moment)) / n).cwiseSqrt();
+  return out;
+}
+
+void ExpectWithinStandardErrors(const SampledMoment& sampled, const Matrix2d& expected,
+                                std::uint64_t seed) {
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_NEAR(sampled.moment(i, j), expected(i, j), 4.0 * sampled.standard_error(i, j))
+          << "seed " << seed << ", element (" << i << ", " << j << ")";
+    }
+  }
+}
+
+// The kept estimate right with weight q / d^2, the other with 1 - q / d^2: DisagreementMixture
+// is that mixture's second moment about the kept mean, here against 200,000 draws of it (the
+// tolerance is 4 standard errors of the sample moment). Within the quantile it is the kept
+// covariance, exactly; just past it, nearly; far past it, nearly the other's plus the offset.
+TEST(GaussianFusionTest, DisagreementMixtureIsTheTwoHypothesesSecondMoment) {
+  const double quantile = 9.2103403719761836;  // chi-square, 2 dof, 0.99
+  const Gaussian2 kept{Vector2d(10.0, 0.0), Vector2d(0.0025, 0.01).asDiagonal()};
+  Gaussian2 other{Vector2d(10.5, 0.2), Matrix2d()};
+  other.covariance << 0.01, 0.002, 0.002, 0.004;
+  const double d2 = MahalanobisSquared(kept.mean - other.mean, kept.covariance + other.covariance);
+  ASSERT_GT(d2, 2.0 * quantile);
+  const double w = quantile / d2;
+  const Matrix2d mixture = DisagreementMixture(kept, other, quantile);
+  const std::uint64_t seed = 20261206;
+  Rng rng(seed);
+  const int samples = 200000;
+  ExpectWithinStandardErrors(
+      SampleSecondMoment(kept.mean, {kept, other}, {w, 1.0 - w}, samples, rng), mixture, seed);
+  // Within the quantile: the kept covariance as it was.
+  const Gaussian2 agreeing{Vector2d(10.1, 0.0), other.covariance};
+  EXPECT_EQ(DisagreementMixture(kept, agreeing, quantile), kept.covariance);
+  // Continuous at the quantile: an offset that puts d^2 just past it changes next to nothing.
+  const Vector2d direction = (other.mean - kept.mean).normalized();
+  const double on_quantile =
+      std::sqrt(quantile / MahalanobisSquared(direction, kept.covariance + other.covariance));
+  const Gaussian2 just_past{kept.mean + (1.0 + 1e-9) * on_quantile * direction, other.covariance};
+  EXPECT_LT((DisagreementMixture(kept, just_past, quantile) - kept.covariance).norm(), 1e-8);
+  // Far past it (10 m against centimetres: q / d^2 = 0.0012): the other's covariance and the
+  // offset, all but that share of the weight.
+  const Gaussian2 far{Vector2d(20.0, 0.0), other.covariance};
+  const Matrix2d far_mixture = DisagreementMixture(kept, far, quantile);
+  const Matrix2d far_limit = SpreadAbout(kept.mean, far);
+  EXPECT_NEAR(far_limit(0, 0), 100.0 + other.covariance(0, 0), 1e-12);
+  EXPECT_LT((far_mixture - far_limit).norm(), 2e-3 * far_limit.norm());
+}
+
+// The fusion right with weight q / d^2, each of the pair's two points with half the rest:
+// TwoBodiesMixture is that mixture's second moment about the fused mean, against 200,000
+// draws. Within the quantile it is the fused covariance, exactly.
+TEST(GaussianFusionTest, TwoBodiesMixtureIsTheThreeHypothesesSecondMoment) {
+  const double quantile = 13.815510557964274;  // chi-square, 2 dof, 0.999
+  const Gaussian2 lidar{Vector2d(10.0, 0.0), Vector2d(0.0025, 0.01).asDiagonal()};
+  Gaussian2 stereo{Vector2d(11.4, 0.1), Matrix2d()};
+  stereo.covariance << 0.04, 0.003, 0.003, 0.0025;
+  const double d2 =
+      MahalanobisSquared(lidar.mean - stereo.mean, lidar.covariance + stereo.covariance);
+  ASSERT_GT(d2, 2.0 * quantile);
+  const Gaussian2 fused = FuseGaussians(lidar, stereo);
+  const double w = quantile / d2;
+  const Matrix2d mixture = TwoBodiesMixture(fused, lidar, stereo, quantile);
+  const std::uint64_t seed = 20261207;
+  Rng rng(seed);
+  const int samples = 200000;
+  ExpectWithinStandardErrors(
+      SampleSecondMoment(fused.mean, {fused, lidar, stereo}, {w, 0.5 * (1.0 - w), 0.5 * (1.0 - w)},
+                         samples, rng),
+      mixture, seed);
+  const Gaussian2 near{Vector2d(10.2, 0.0), stereo.covariance};
+  EXPECT_EQ(TwoBodiesMixture(fused, lidar, near, quantile), fused.covariance);
 }
 
 }  // namespace
