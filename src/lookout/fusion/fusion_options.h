@@ -43,8 +43,9 @@ struct FusionOptions {
   // fused covariance, scaled as above, becomes TwoBodiesMixture's (gaussian_fusion.h), the
   // fusion and each point alone as three hypotheses about the fused point. Beyond this point
   // an understated covariance no longer explains the disagreement (the crowd: a walker's camera
-  // object with a neighbour's segment, its own hidden). 1: off. 0.999: at 0.99 the mixture
-  // takes the disagreements of right-turn-cyclist's corner views, whose fused point is right
+  // object with a neighbour's segment, its own hidden). The same point for the body's history
+  // (history_disagreement_probability). 1: off. 0.999: at 0.99 the mixture takes the
+  // disagreements of right-turn-cyclist's corner views, whose fused point is right
   // (docs/fusion.md, "Two bodies in one pair").
   double two_bodies_probability = 0.999;
 
@@ -74,9 +75,12 @@ struct FusionOptions {
   double pair_memory_s = 0.3;
   // A pair whose fused point disagrees with its camera track's own prior (the last pair's
   // fused point predicted to this stamp) beyond the chi-square (2 dof) quantile of this
-  // probability, under the two covariances summed, has its fused covariance made
-  // DisagreementMixture's (gaussian_fusion.h): the fused point or the body's history right,
-  // the spread along the offset between them. The camera's depth cannot tell a walker from the
+  // probability, under the two covariances summed, has its fused covariance scaled by
+  // d^2 / quantile, as DisagreementScale does for the pair's two points, and, still beyond
+  // two_bodies_probability's point, made DisagreementMixture's (gaussian_fusion.h): the fused
+  // point or the body's history right, the spread along the offset between them (the
+  // mixture at this 0.99 point widened right points: docs/fusion.md, "Two bodies in one
+  // pair"). The camera's depth cannot tell a walker from the
   // lamp post it passes (a walker's camera object with the post's segment, its own returns
   // hidden, in the crowd: the pair agrees within its gate, the body's history 0.4 m away does
   // not). 1: off. 0.99, since at 0.95 right-turn-cyclist's fused NEES fell under its band
