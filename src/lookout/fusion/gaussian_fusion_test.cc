@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lookout/core/random.h"
+#include "lookout/fusion/sampled_moment_test_support.h"
 
 namespace lookout::fusion {
 namespace {
@@ -139,65 +140,35 @@ TEST(GaussianFusionTest, FuseCorrelatedStatesTheCovarianceOfItsError) {
   const std::uint64_t seed = 20261208;
   Rng rng(seed);
   const int samples = 200000;
-  Matrix2d sum = Matrix2d::Zero(), sum_squares = Matrix2d::Zero();
+  testing::SampledMoment errors;
   for (int k = 0; k < samples; ++k) {
     const Eigen::Vector4d e =
         lower * Eigen::Vector4d(rng.Normal(), rng.Normal(), rng.Normal(), rng.Normal());
     const Gaussian2 draw = FuseCorrelated(Gaussian2{a.mean + e.head<2>(), a.covariance},
                                           Gaussian2{b.mean + e.tail<2>(), b.covariance}, cross);
     const Vector2d error = draw.mean - fused.mean;  // both means' errors drawn about zero
-    const Matrix2d product = error * error.transpose();
-    sum += product;
-    sum_squares += product.cwiseProduct(product);
+    errors.Add(error * error.transpose());
   }
-  const Matrix2d moment = sum / samples;
-  const Matrix2d standard_error =
-      ((sum_squares / samples - moment.cwiseProduct(moment)) / samples).cwiseSqrt();
-  for (int i = 0; i < 2; ++i) {
-    for (int j = 0; j < 2; ++j) {
-      EXPECT_NEAR(moment(i, j), fused.covariance(i, j), 4.0 * standard_error(i, j))
-          << "seed " << seed << ", element (" << i << ", " << j << ")";
-    }
-  }
+  errors.ExpectNear(fused.covariance, seed);
   EXPECT_GT(fused.covariance.trace(), 1.2 * plain.covariance.trace());
 }
 
-// The second moment about a point of samples drawn from a weighted set of Gaussians (the
-// mixture the closed forms below stand for, drawn), and each element's standard error from
-// the samples' own spread. `weights` sum to 1.
-struct SampledMoment {
-  Matrix2d moment = Matrix2d::Zero();
-  Matrix2d standard_error = Matrix2d::Zero();
-};
-SampledMoment SampleSecondMoment(const Vector2d& about, const std::vector<Gaussian2>& components,
-                                 const std::vector<double>& weights, int samples, Rng& rng) {
-  Matrix2d sum = Matrix2d::Zero();
-  Matrix2d sum_squares = Matrix2d::Zero();
+// The second moment about a point of samples drawn from a weighted set of Gaussians: the
+// mixture the closed forms below stand for, drawn. `weights` sum to 1.
+testing::SampledMoment SampleSecondMoment(const Vector2d& about,
+                                          const std::vector<Gaussian2>& components,
+                                          const std::vector<double>& weights, int samples,
+                                          Rng& rng) {
+  testing::SampledMoment out;
   for (int k = 0; k < samples; ++k) {
     double u = rng.Uniform(0.0, 1.0);
     std::size_t c = 0;
     while (c + 1 < components.size() && u >= weights[c]) u -= weights[c++];
     const Eigen::LLT<Matrix2d> chol(components[c].covariance);
     const Vector2d x = components[c].mean + chol.matrixL() * Vector2d(rng.Normal(), rng.Normal());
-    const Matrix2d product = (x - about) * (x - about).transpose();
-    sum += product;
-    sum_squares += product.cwiseProduct(product);
+    out.Add((x - about) * (x - about).transpose());
   }
-  const double n = samples;
-  SampledMoment out;
-  out.moment = sum / n;
-  out.standard_error = ((sum_squares / n - out.moment.cwiseProduct(out.moment)) / n).cwiseSqrt();
   return out;
-}
-
-void ExpectWithinStandardErrors(const SampledMoment& sampled, const Matrix2d& expected,
-                                std::uint64_t seed) {
-  for (int i = 0; i < 2; ++i) {
-    for (int j = 0; j < 2; ++j) {
-      EXPECT_NEAR(sampled.moment(i, j), expected(i, j), 4.0 * sampled.standard_error(i, j))
-          << "seed " << seed << ", element (" << i << ", " << j << ")";
-    }
-  }
 }
 
 // The kept estimate right with weight q / d^2, the other with 1 - q / d^2: DisagreementMixture
@@ -216,8 +187,8 @@ TEST(GaussianFusionTest, DisagreementMixtureIsTheTwoHypothesesSecondMoment) {
   const std::uint64_t seed = 20261206;
   Rng rng(seed);
   const int samples = 200000;
-  ExpectWithinStandardErrors(
-      SampleSecondMoment(kept.mean, {kept, other}, {w, 1.0 - w}, samples, rng), mixture, seed);
+  SampleSecondMoment(kept.mean, {kept, other}, {w, 1.0 - w}, samples, rng)
+      .ExpectNear(mixture, seed);
   // Within the quantile: the kept covariance as it was.
   const Gaussian2 agreeing{Vector2d(10.1, 0.0), other.covariance};
   EXPECT_EQ(DisagreementMixture(kept, agreeing, quantile), kept.covariance);
@@ -253,10 +224,9 @@ TEST(GaussianFusionTest, TwoBodiesMixtureIsTheThreeHypothesesSecondMoment) {
   const std::uint64_t seed = 20261207;
   Rng rng(seed);
   const int samples = 200000;
-  ExpectWithinStandardErrors(
-      SampleSecondMoment(fused.mean, {fused, lidar, stereo}, {w, 0.5 * (1.0 - w), 0.5 * (1.0 - w)},
-                         samples, rng),
-      mixture, seed);
+  SampleSecondMoment(fused.mean, {fused, lidar, stereo}, {w, 0.5 * (1.0 - w), 0.5 * (1.0 - w)},
+                     samples, rng)
+      .ExpectNear(mixture, seed);
   const Gaussian2 near{Vector2d(10.2, 0.0), stereo.covariance};
   EXPECT_EQ(TwoBodiesMixture(fused, lidar, near, quantile), fused.covariance);
 }

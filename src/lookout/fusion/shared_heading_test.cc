@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "lookout/core/random.h"
+#include "lookout/fusion/sampled_moment_test_support.h"
 #include "lookout/stereo/stereo_point.h"
 
 namespace lookout::fusion {
@@ -36,7 +37,7 @@ TEST(SharedHeadingTest, OneHeadingErrorInBothPointsIsTheirCrossCovariance) {
   const std::uint64_t seed = 20261209;
   Rng rng(seed);
   const int samples = 100000;
-  Matrix2d sum = Matrix2d::Zero(), sum_squares = Matrix2d::Zero();
+  testing::SampledMoment cross;
   for (int k = 0; k < samples; ++k) {
     const double heading_error = std::sqrt(yaw_variance) * rng.Normal();
     stereo::OrientedBox camera = truth, square = truth;
@@ -50,20 +51,9 @@ TEST(SharedHeadingTest, OneHeadingErrorInBothPointsIsTheirCrossCovariance) {
     const Vector2d e_lidar =
         stereo::ExpectedFrontPoint(square, lidar_centre, yaw_variance, lidar)->point_m -
         truth_point;
-    const Matrix2d product = e_camera * e_lidar.transpose();
-    sum += product;
-    sum_squares += product.cwiseProduct(product);
+    cross.Add(e_camera * e_lidar.transpose());
   }
-  const Matrix2d moment = sum / samples;
-  const Matrix2d standard_error =
-      ((sum_squares / samples - moment.cwiseProduct(moment)) / samples).cwiseSqrt();
-  for (int i = 0; i < 2; ++i) {
-    for (int j = 0; j < 2; ++j) {
-      EXPECT_NEAR(moment(i, j), expected(i, j),
-                  4.0 * standard_error(i, j) + 0.05 * std::abs(expected(i, j)))
-          << "seed " << seed << ", element (" << i << ", " << j << ")";
-    }
-  }
+  cross.ExpectNear(expected, seed, 4.0, 0.05);
 }
 
 // The side choice, one fact in both: two estimates that chose the same side with the same q
