@@ -525,6 +525,32 @@ TEST(LidarPointModelTest, TheRadiusErrorMovesTheSideAlongItsNormal) {
   EXPECT_GT(turned.y() - square_on.y(), 0.03 * 0.03);
 }
 
+// A front that is one leg of a split L holds that leg's returns, not the object's: 12 returns
+// on a walker 12 m away whose front spans half the diameter (six beam spacings of 5.2 cm) gives
+// the side point of the six on it, exactly; counted whole, its depth would be twice as sure.
+TEST(LidarPointModelTest, AFrontHoldsTheReturnsOnItsChord) {
+  const double r = 0.3;
+  const Vector2d lidar(0.0, 0.0);
+  const Vector2d centre(12.0, 0.0);
+  const LidarPointModelOptions options;
+  const stereo::OrientedBox square{centre, 0.2, 2.0 * r, 2.0 * r};
+  const auto truth = stereo::FrontSegmentFacing(square, lidar);
+  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
+                          0.05 * 0.05};
+  LidarObject leg = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
+  leg.point_count = 12;
+  LidarObject alone = leg;
+  alone.point_count = 7;  // 0.3 m / 5.2 cm + 1
+  const LidarSidePoint from_leg = FacingSidePoint(leg, walker, lidar, options);
+  const LidarSidePoint from_alone = FacingSidePoint(alone, walker, lidar, options);
+  EXPECT_LT((from_leg.covariance - from_alone.covariance).norm(), 1e-15);
+  EXPECT_LT((from_leg.point_m - from_alone.point_m).norm(), 1e-15);
+  LidarObject fewer = leg;
+  fewer.point_count = 5;  // fewer than the chord would hold: the object's own count stands
+  EXPECT_GT(FacingSidePoint(fewer, walker, lidar, options).covariance(0, 0),
+            from_leg.covariance(0, 0));
+}
+
 // A segment deeper along the ray than a radius is no arc of one circle: a lamp post 0.5 m in
 // front of a walker, one segment to the scan. The walker's side is at either end of that depth:
 // (0.5 m / 2)^2 along the ray. A segment 0.2 m deep, within a radius, gets nothing of it: a few
