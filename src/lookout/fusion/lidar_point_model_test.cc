@@ -551,6 +551,30 @@ TEST(LidarPointModelTest, AFrontHoldsTheReturnsOnItsChord) {
             from_leg.covariance(0, 0));
 }
 
+// The same leg with one end in a nearer body's shadow that could hide the rest and the other
+// seen free: a piece of its own seven returns is the silhouette's edge on the free side, but as
+// the leg of a split L of twelve its free end may be the L's corner: anywhere on the near
+// half-circle, half the diameter's (0.3 m)^2 / 12 wider across the ray.
+TEST(LidarPointModelTest, ASplitLegIsAnywhereOnTheCircle) {
+  const double r = 0.3;
+  const Vector2d lidar(0.0, 0.0);
+  const Vector2d centre(12.0, 0.0);
+  const LidarPointModelOptions options;
+  const stereo::OrientedBox square{centre, 0.2, 2.0 * r, 2.0 * r};
+  const auto truth = stereo::FrontSegmentFacing(square, lidar);
+  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
+                          0.05 * 0.05};
+  LidarObject piece = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
+  piece.point_count = 7;
+  piece.hidden_start_m = 1.0;
+  piece.hidden_end_m = 12.0 * options.beam_spacing_rad;
+  LidarObject leg = piece;
+  leg.point_count = 12;
+  const Matrix2d edge = FacingSidePoint(piece, walker, lidar, options).covariance;
+  const Matrix2d anywhere = FacingSidePoint(leg, walker, lidar, options).covariance;
+  EXPECT_GT(anywhere(1, 1) - edge(1, 1), 0.5 * r * r / 12.0);
+}
+
 // A segment deeper along the ray than a radius is no arc of one circle: a lamp post 0.5 m in
 // front of a walker, one segment to the scan. The walker's side is at either end of that depth:
 // (0.5 m / 2)^2 along the ray. A segment 0.2 m deep, within a radius, gets nothing of it: a few
