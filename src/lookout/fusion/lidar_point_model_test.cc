@@ -453,6 +453,15 @@ TEST(LidarPointModelTest, AWalkersSquareTurnsWithTheCamerasHeading) {
   EXPECT_GT(checked, 350);
 }
 
+// A walker's 0.6 m square at `centre`, turned 0.2 rad, as the camera pairs it (its heading to
+// 0.05 rad): the side facing `lidar`.
+constexpr double kTurnedWalkerRadius = 0.3;
+PairedBody TurnedWalker(const Vector2d& centre, const Vector2d& lidar) {
+  const double d = 2.0 * kTurnedWalkerRadius;
+  const auto facing = stereo::FrontSegmentFacing(stereo::OrientedBox{centre, 0.2, d, d}, lidar);
+  return PairedBody{ObjectClass::kPedestrian, d, d, facing->end_m - facing->start_m, 0.05 * 0.05};
+}
+
 // The turned square's covariance: with the camera's heading to 0.05 rad and the whole chord
 // seen, centimetres across the ray where the heading unknown gives 0.13 m; a chord of half the
 // diameter, both ends seen free, lies anywhere between the silhouettes: the unseen half's
@@ -461,14 +470,11 @@ TEST(LidarPointModelTest, AWalkersSquareTurnsWithTheCamerasHeading) {
 // that goes with it (a piece off the ray's middle lies deeper), more than the whole arc's by
 // about a centimetre's standard deviation; one longer than the diameter, the surplus's.
 TEST(LidarPointModelTest, ATurnedSquaresSpreadIsTheHeadingsAndTheUnseenChords) {
-  const double r = 0.3;
+  const double r = kTurnedWalkerRadius;
   const Vector2d lidar(0.0, 0.0);
   const Vector2d centre(12.0, 0.0);
   const LidarPointModelOptions options;
-  const stereo::OrientedBox square{centre, 0.2, 2.0 * r, 2.0 * r};
-  const auto truth = stereo::FrontSegmentFacing(square, lidar);
-  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
-                          0.05 * 0.05};
+  const PairedBody walker = TurnedWalker(centre, lidar);
   LidarObject whole = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, r));
   whole.point_count = 12;
   const Matrix2d p = FacingSidePoint(whole, walker, lidar, options).covariance;
@@ -529,14 +535,11 @@ TEST(LidarPointModelTest, TheRadiusErrorMovesTheSideAlongItsNormal) {
 // on a walker 12 m away whose front spans half the diameter (six beam spacings of 5.2 cm) gives
 // the side point of the six on it, exactly; counted whole, its depth would be twice as sure.
 TEST(LidarPointModelTest, AFrontHoldsTheReturnsOnItsChord) {
-  const double r = 0.3;
+  const double r = kTurnedWalkerRadius;
   const Vector2d lidar(0.0, 0.0);
   const Vector2d centre(12.0, 0.0);
   const LidarPointModelOptions options;
-  const stereo::OrientedBox square{centre, 0.2, 2.0 * r, 2.0 * r};
-  const auto truth = stereo::FrontSegmentFacing(square, lidar);
-  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
-                          0.05 * 0.05};
+  const PairedBody walker = TurnedWalker(centre, lidar);
   LidarObject leg = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
   leg.point_count = 12;
   LidarObject alone = leg;
@@ -556,14 +559,11 @@ TEST(LidarPointModelTest, AFrontHoldsTheReturnsOnItsChord) {
 // the leg of a split L of twelve its free end may be the L's corner: anywhere on the near
 // half-circle, half the diameter's (0.3 m)^2 / 12 wider across the ray.
 TEST(LidarPointModelTest, ASplitLegIsAnywhereOnTheCircle) {
-  const double r = 0.3;
+  const double r = kTurnedWalkerRadius;
   const Vector2d lidar(0.0, 0.0);
   const Vector2d centre(12.0, 0.0);
   const LidarPointModelOptions options;
-  const stereo::OrientedBox square{centre, 0.2, 2.0 * r, 2.0 * r};
-  const auto truth = stereo::FrontSegmentFacing(square, lidar);
-  const PairedBody walker{ObjectClass::kPedestrian, 2.0 * r, 2.0 * r, truth->end_m - truth->start_m,
-                          0.05 * 0.05};
+  const PairedBody walker = TurnedWalker(centre, lidar);
   LidarObject piece = SegmentObject(centre - Vector2d(r, 0.0), Vector2d(0.0, 0.5 * r));
   piece.point_count = 7;
   piece.hidden_start_m = 1.0;
