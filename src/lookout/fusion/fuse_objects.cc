@@ -204,19 +204,15 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
   }
 
   const AssociationGate gate(options);
-  // Once per frame: the quantile is an inversion of the incomplete gamma function. Off: no
+  // Once per frame: the quantile is an inversion of the incomplete gamma function. Off (1): no
   // disagreement passes an infinite quantile.
-  const double disagreement_quantile =
-      options.disagreement_probability < 1.0
-          ? ChiSquareQuantile(options.disagreement_probability, 2.0)
-          : std::numeric_limits<double>::infinity();
-  const double two_bodies_quantile = options.two_bodies_probability < 1.0
-                                         ? ChiSquareQuantile(options.two_bodies_probability, 2.0)
-                                         : std::numeric_limits<double>::infinity();
-  const double history_quantile =
-      options.history_disagreement_probability < 1.0
-          ? ChiSquareQuantile(options.history_disagreement_probability, 2.0)
-          : std::numeric_limits<double>::infinity();
+  const auto quantile_or_off = [](double probability) {
+    return probability < 1.0 ? ChiSquareQuantile(probability, 2.0)
+                             : std::numeric_limits<double>::infinity();
+  };
+  const double disagreement_quantile = quantile_or_off(options.disagreement_probability);
+  const double two_bodies_quantile = quantile_or_off(options.two_bodies_probability);
+  const double history_quantile = quantile_or_off(options.history_disagreement_probability);
   const std::vector<std::optional<std::size_t>> own_prior = OwnPriors(priors, stereo.size());
   const std::vector<AssociationPair> pairs =
       AssociateStereoToLidar(stereo_points, lidar_points, gate, priors);

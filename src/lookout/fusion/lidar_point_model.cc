@@ -312,10 +312,11 @@ namespace {
 // whole arcs a few centimetres too deep where the grazing returns split off, the pieces
 // between shadows as deep as the circle's flank, 0.13-0.17 m off along the ray against 3 cm of
 // sigma in the crowd (docs/fusion.md, "Two bodies in one pair"). The chord is the piece's
-// extent across the ray, clamped to the diameter.
+// extent across the ray, clamped to the diameter; its returns, those on it.
 struct ArcPiece {
   double chord_m = 0.0;
   double start_min_m = 0.0, start_max_m = 0.0;  // ArcPieceCentre's
+  int returns = 0;
 };
 // `across`: the ray to the object turned a quarter left, unit.
 ArcPiece PlacedArcPiece(const LidarObject& object, const Vector2d& across, double radius_m,
@@ -323,14 +324,19 @@ ArcPiece PlacedArcPiece(const LidarObject& object, const Vector2d& across, doubl
   const double chord = std::clamp(std::abs((object.front_end_m - object.front_start_m).dot(across)),
                                   0.0, 2.0 * radius_m);
   const double missing = 2.0 * radius_m - chord;
-  // A front that is one leg of an L the segmentation split holds fewer of the object's returns
-  // than its chord would (under 0.85 of them a beam spacing apart): one of its ends is the
-  // L's corner, not the arc's, and says nothing of where the silhouette is. Placed by its
-  // hidden extents as a piece, the crowd's split arcs were at fused NEES 2.84 where whole ones
-  // were at 2.02 (docs/fusion.md, "Two bodies in one pair").
+  // The returns on the piece: the object's, but where the segmentation split an L and took one
+  // leg for the front, only that leg's, a beam spacing apart across its chord. Counted whole,
+  // the crowd's split arcs had side points at NEES 3.8 (docs/fusion.md, "Two bodies in one
+  // pair").
+  const int returns = std::min(static_cast<int>(object.point_count),
+                               static_cast<int>(std::lround(chord / spacing_m)) + 1);
+  // Such a leg (its chord under 0.85 of what the object's returns span a beam spacing apart)
+  // has the L's corner for one end, not the arc's, which says nothing of where the silhouette
+  // is. Placed by its hidden extents as a piece, the crowd's split arcs were at fused NEES 2.84
+  // where whole ones were at 2.02.
   const double returns_span = (static_cast<double>(object.point_count) - 1.0) * spacing_m;
   if (object.point_count >= 3 && chord < 0.85 * returns_span) {
-    return ArcPiece{chord, -radius_m, radius_m - chord};
+    return ArcPiece{chord, -radius_m, radius_m - chord, returns};
   }
   // The hidden extents past the piece's low and high ends across the ray.
   const bool start_low = (object.front_start_m - object.front_end_m).dot(across) <= 0.0;
@@ -338,12 +344,12 @@ ArcPiece PlacedArcPiece(const LidarObject& object, const Vector2d& across, doubl
   const double hidden_high = start_low ? object.hidden_end_m : object.hidden_start_m;
   const bool low_holds = hidden_low >= missing;
   const bool high_holds = hidden_high >= missing;
-  if (low_holds == high_holds) return ArcPiece{chord, -radius_m, radius_m - chord};
+  if (low_holds == high_holds) return ArcPiece{chord, -radius_m, radius_m - chord, returns};
   // The silhouette lies within the other end's hidden extent: a beam spacing where the scan
   // sees it free, less than the missing part (it does not hold).
   const double edge = std::min(std::max(spacing_m, low_holds ? hidden_high : hidden_low), missing);
-  if (low_holds) return ArcPiece{chord, radius_m - chord - edge, radius_m - chord};
-  return ArcPiece{chord, -radius_m, -radius_m + edge};
+  if (low_holds) return ArcPiece{chord, radius_m - chord - edge, radius_m - chord, returns};
+  return ArcPiece{chord, -radius_m, -radius_m + edge, returns};
 }
 
 // The round body's point with the camera's heading (LidarPointModelOptions::round_body_heading,
@@ -388,15 +394,9 @@ LidarSidePoint TurnedSquareSidePoint(const LidarObject& object, const LidarSideP
   const std::optional<ArcPiece> piece =
       grid ? std::nullopt : std::optional(PlacedArcPiece(object, across, *radius, spacing));
   if (piece) {
-    // The returns on the piece: the object's, but where the segmentation split an L and took
-    // one leg for the front, only that leg's, a beam spacing apart across its chord. Counted
-    // whole, the crowd's split arcs (the front's chord under 0.85 of what the returns span:
-    // 281 pairs) had side points at NEES 3.8 (docs/fusion.md, "Two bodies in one pair").
-    const int count = std::min(static_cast<int>(object.point_count),
-                               static_cast<int>(std::lround(piece->chord_m / spacing)) + 1);
-    const ArcCentre centre = ArcPieceCentre(*radius, piece->chord_m, count, piece->start_min_m,
-                                            piece->start_max_m, radius_sigma);
-    const double returns = std::max(1, count);
+    const ArcCentre centre = ArcPieceCentre(*radius, piece->chord_m, piece->returns,
+                                            piece->start_min_m, piece->start_max_m, radius_sigma);
+    const double returns = std::max(1, piece->returns);
     depth_radius_slope = centre.depth_radius_slope;
     square.center_m = object.point_m - object.round_body_shift_m + centre.mean_m.x() * beam +
                       centre.mean_m.y() * across;
