@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,34 @@ struct LidarObject {
   // hides it (the segmentation's HiddenExtent). Zero when the source does not say (the grid's).
   double hidden_start_m = 0.0;
   double hidden_end_m = 0.0;
+  // The fields above that say where the front is, for a second reading of the same returns.
+  struct FrontReading {
+    Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d point_covariance = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d front_start_m = Eigen::Vector2d::Zero();
+    Eigen::Vector2d front_end_m = Eigen::Vector2d::Zero();
+    Eigen::Vector2d round_body_shift_m = Eigen::Vector2d::Zero();
+    double hidden_start_m = 0.0;
+    double hidden_end_m = 0.0;
+  };
+  // A small L (both sides shorter than a box's) whose returns a circle fits within the range
+  // noise: the scan cannot tell a small box's corner from a round body's arc seen in part (a
+  // walker half hidden shows an arc whose furthest return from its chord is off its middle, so
+  // the segmentation takes it for an L and one leg for the front). The whole cluster read as
+  // an arc, as the segmentation reads one; the fields above hold the L. The fusion takes this
+  // where the camera's box is a circle (fusion::ReadAsBody). Absent otherwise.
+  std::optional<FrontReading> arc_reading;
+
+  // The object with its front read as `reading` says.
+  void SetFront(const FrontReading& reading) {
+    point_m = reading.point_m;
+    point_covariance = reading.point_covariance;
+    front_start_m = reading.front_start_m;
+    front_end_m = reading.front_end_m;
+    round_body_shift_m = reading.round_body_shift_m;
+    hidden_start_m = reading.hidden_start_m;
+    hidden_end_m = reading.hidden_end_m;
+  }
 };
 
 struct LidarObjectFrame {

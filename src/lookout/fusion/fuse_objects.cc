@@ -257,8 +257,11 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       const stereo::StereoPoint& s = stereo[*i];
       const PairedBody body{s.object_class, s.footprint.length_m, s.footprint.width_m,
                             s.front.end_m - s.front.start_m, s.yaw_variance};
+      // What the lidar alone measured, as the camera's body reads the returns.
+      const LidarObject read = ReadAsBody(l, body, options.lidar_point);
+      as_fused = read;
       as_fused.point_covariance =
-          LidarPointCovariance(l, body, lidar.mount.translation, options.lidar_point);
+          LidarPointCovariance(read, body, lidar.mount.translation, options.lidar_point);
       if (pairing.footprint_pair[j]) {
         // Two sides' middles are not one point: the camera's is kept, with its front.
         f.point_m = stereo_points[*i].point_m;
@@ -270,7 +273,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         // The lidar's point for the side the camera's box turns to it, the segment's middle
         // unless a corner view says another side faces (FacingSidePoint). The lidar object
         // itself keeps its own point: what the lidar alone measured.
-        const LidarSidePoint side = FacingSidePoint(l, as_fused.point_covariance, body,
+        const LidarSidePoint side = FacingSidePoint(read, as_fused.point_covariance, body,
                                                     lidar.mount.translation, options.lidar_point);
         const Gaussian2 lidar_point{side.point_m, side.covariance};
         const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};

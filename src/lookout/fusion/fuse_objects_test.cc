@@ -230,6 +230,46 @@ TEST(FuseObjectsTest, TheLidarPointTakesTheCamerasClass) {
   EXPECT_EQ(result.frame.objects[1].point_covariance, alone.point_covariance);
 }
 
+// A small L the scan read as an arc too: paired with the camera's walker, the lidar object
+// the fusion keeps and the point it fuses are the arc's (ReadAsBody); unpaired, the L stays.
+TEST(FuseObjectsTest, AWalkersSmallLIsFusedAsItsArc) {
+  LidarObject paired = MakeLidar(7, Vector2d(15.2, 0.1));
+  paired.front_start_m = paired.point_m + Vector2d(0.0, -0.1);
+  paired.front_end_m = paired.point_m + Vector2d(0.0, 0.2);
+  LidarObject::FrontReading arc;
+  arc.point_m = Vector2d(15.1, 0.0);
+  arc.point_covariance = Vector2d(0.0009, 0.0016).asDiagonal();
+  arc.front_start_m = Vector2d(15.1, -0.28);
+  arc.front_end_m = Vector2d(15.1, 0.28);
+  arc.hidden_start_m = 0.05;
+  arc.hidden_end_m = 0.05;
+  paired.arc_reading = arc;
+  LidarObject alone = paired;
+  alone.id = 8;
+  alone.point_m = Vector2d(15.0, 6.0);
+  const LidarObjectFrame lidar = Frame({paired, alone});
+  const std::vector<stereo::StereoPoint> stereo = {MakeStereo(3, Vector2d(15.0, 0.0))};
+  const FusionOptions options;
+  const FuseObjectsResult result = FuseObjects(lidar, stereo, options);
+  ASSERT_EQ(result.pairs, 1u);
+  ASSERT_EQ(result.lidar.objects.size(), 2u);
+  EXPECT_EQ(result.lidar.objects[0].point_m, arc.point_m);
+  EXPECT_EQ(result.lidar.objects[0].front_end_m, arc.front_end_m);
+  EXPECT_EQ(result.lidar.objects[1].point_m, alone.point_m);
+  // The fused point is what the arc's reading fuses to, not the L's.
+  const PairedBody body{stereo[0].object_class, stereo[0].footprint.length_m,
+                        stereo[0].footprint.width_m,
+                        stereo[0].front.end_m - stereo[0].front.start_m, stereo[0].yaw_variance};
+  const LidarObject read = ReadAsBody(paired, body, options.lidar_point);
+  const LidarSidePoint side =
+      FacingSidePoint(read, body, kLidarMount.translation, options.lidar_point);
+  paired.arc_reading.reset();
+  const LidarSidePoint l_side =
+      FacingSidePoint(paired, body, kLidarMount.translation, options.lidar_point);
+  EXPECT_LT((result.frame.objects[0].front_end_m - side.front_end_m).norm(), 1e-12);
+  EXPECT_GT((side.point_m - l_side.point_m).norm(), 0.05);
+}
+
 TEST(FuseObjectsTest, ObjectsSeenByOneSensorAreKept) {
   // A lidar object with no stereo partner, a stereo object far from any lidar object.
   const LidarObjectFrame lidar = Frame({MakeLidar(1, Vector2d(15.0, 5.0), false)});

@@ -149,6 +149,15 @@ std::optional<double> RoundBodyRadius(const PairedBody& body,
   return 0.5 * larger;
 }
 
+LidarObject ReadAsBody(const LidarObject& object, const PairedBody& body,
+                       const LidarPointModelOptions& options) {
+  LidarObject read = object;
+  if (object.arc_reading && options.round_body && RoundBodyRadius(body, options)) {
+    read.SetFront(*object.arc_reading);
+  }
+  return read;
+}
+
 Matrix2d LidarPointCovariance(const LidarObject& object, ObjectClass object_class,
                               const Vector2d& lidar_origin_m,
                               const LidarPointModelOptions& options) {

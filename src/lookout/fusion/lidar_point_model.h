@@ -191,6 +191,15 @@ struct PairedBody {
 std::optional<double> RoundBodyRadius(const PairedBody& body,
                                       const LidarPointModelOptions& options);
 
+// The lidar object as the camera's body reads it: where the scan read a small L as a round
+// body's arc too (LidarObject::arc_reading) and the body is round (RoundBodyRadius, with
+// options.round_body), the arc, whole; else the object as it is. A walker half hidden by
+// another shows part of its arc, which the segmentation takes for an L and one leg for the
+// front: the crowd's such legs had fused points at NEES 2.8 where whole arcs had 2.0
+// (docs/fusion.md, "A small L read as an arc"). Pure.
+LidarObject ReadAsBody(const LidarObject& object, const PairedBody& body,
+                       const LidarPointModelOptions& options);
+
 // The lidar object's point covariance with the terms above added for an object paired with
 // `body`, seen from `lidar_origin_m` (vehicle frame, as the object): the round body for round
 // bodies (RoundBodyRadius), from either source; the ends' resolution and the hidden extent, by

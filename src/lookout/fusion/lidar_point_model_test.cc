@@ -406,6 +406,48 @@ TEST(LidarPointModelTest, AnArcTheCameraSaysIsNoCircleGoesBack) {
   EXPECT_EQ(FacingSidePoint(end, walker, lidar, options).point_m, end.point_m);
 }
 
+// A small L the scan also read as an arc (LidarObject::arc_reading): a round body's camera box
+// takes the arc, every field the reading holds; a cyclist's box, no box of a class that is not
+// a pedestrian, or the round body switched off keep the L; an object with no reading is itself.
+TEST(LidarPointModelTest, ASmallLIsReadAsAnArcWhereTheCameraSeesACircle) {
+  LidarPointModelOptions options;
+  LidarObject l = SegmentObject(Vector2d(11.19, -1.55), Vector2d(0.0, 0.2));
+  l.id = 7;
+  l.point_count = 12;
+  LidarObject::FrontReading arc;
+  arc.point_m = Vector2d(11.12, -1.40);
+  arc.point_covariance = Vector2d(0.0001, 0.0002).asDiagonal();
+  arc.front_start_m = Vector2d(11.10, -1.68);
+  arc.front_end_m = Vector2d(11.14, -1.12);
+  arc.round_body_shift_m = Vector2d(-0.06, 0.0);
+  arc.hidden_start_m = 0.04;
+  arc.hidden_end_m = 0.9;
+  l.arc_reading = arc;
+  const auto same_front = [](const LidarObject& o, const LidarObject::FrontReading& r) {
+    return o.point_m == r.point_m && o.point_covariance == r.point_covariance &&
+           o.front_start_m == r.front_start_m && o.front_end_m == r.front_end_m &&
+           o.round_body_shift_m == r.round_body_shift_m && o.hidden_start_m == r.hidden_start_m &&
+           o.hidden_end_m == r.hidden_end_m;
+  };
+  const LidarObject::FrontReading as_l{l.point_m,     l.point_covariance,   l.front_start_m,
+                                       l.front_end_m, l.round_body_shift_m, l.hidden_start_m,
+                                       l.hidden_end_m};
+  const PairedBody walker{ObjectClass::kPedestrian, 0.6, 0.6, Vector2d(0.0, 0.6)};
+  const LidarObject read = ReadAsBody(l, walker, options);
+  EXPECT_TRUE(same_front(read, arc));
+  EXPECT_EQ(read.id, 7u);
+  EXPECT_EQ(read.point_count, 12u);
+  EXPECT_TRUE(same_front(ReadAsBody(l, PairedBody{ObjectClass::kPedestrian}, options), arc));
+  EXPECT_TRUE(
+      same_front(ReadAsBody(l, PairedBody{ObjectClass::kCyclist, 1.8, 0.6}, options), as_l));
+  EXPECT_TRUE(same_front(ReadAsBody(l, PairedBody{ObjectClass::kCyclist}, options), as_l));
+  options.round_body = false;
+  EXPECT_TRUE(same_front(ReadAsBody(l, walker, options), as_l));
+  options.round_body = true;
+  l.arc_reading.reset();
+  EXPECT_TRUE(same_front(ReadAsBody(l, walker, options), as_l));
+}
+
 // A walker (r = 0.3 m, 12 m away) whatever its heading: with the camera's heading, the lidar's
 // point is the middle of the side of the walker's square that faces the lidar (the truth's
 // point), its front that side, a radius in front of the centre; without it, the arc's nearest

@@ -2,11 +2,13 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "lookout/core/breakpoint_distance.h"
+#include "lookout/core/chi_square.h"
 #include "lookout/core/input_error.h"
 #include "lookout/core/planar_geometry.h"
 
@@ -94,7 +96,41 @@ std::pair<std::size_t, double> FurthestFromChord(std::span<const double> distanc
 struct FrontSideRange {
   std::size_t begin = 0, end = 0;
   bool round_body = false;
+  bool arc_reading =
+      false;  // a small L a circle fits too (SegmentationOptions::arc_reading_probability)
 };
+
+// Whether a circle through `points` bulging towards `lidar` (its centre further from the lidar
+// than `corner`) leaves residuals the range noise makes with probability `probability`: their
+// sum of squares under sigma_r^2 times the chi-square quantile of n - 3 degrees of freedom.
+// Kasa's algebraic fit (x^2 + y^2 + D x + E y + F = 0 by least squares): closed form, and
+// near the geometric fit for arcs of a quarter circle and more, which an L's two sides span;
+// the test takes the geometric residuals of its circle. Three points fit any circle: false.
+bool CircleFits(std::span<const Vector2d> points, const Vector2d& lidar, const Vector2d& corner,
+                double range_noise_m, double probability) {
+  const auto n = static_cast<Eigen::Index>(points.size());
+  if (n < 4 || !(probability > 0.0)) return false;
+  Eigen::MatrixX3d design(n, 3);
+  Eigen::VectorXd rhs(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Vector2d& p = points[static_cast<std::size_t>(k)];
+    design.row(k) << p.x(), p.y(), 1.0;
+    rhs(k) = -p.squaredNorm();
+  }
+  const Eigen::Vector3d def = design.colPivHouseholderQr().solve(rhs);
+  const Vector2d center = -0.5 * def.head<2>();
+  const double radius_squared = center.squaredNorm() - def(2);
+  if (!(radius_squared > 0.0) || !std::isfinite(radius_squared)) return false;
+  if ((center - lidar).norm() <= (corner - lidar).norm()) return false;
+  const double radius = std::sqrt(radius_squared);
+  double residuals = 0.0;
+  for (const Vector2d& p : points) {
+    const double r = (p - center).norm() - radius;
+    residuals += r * r;
+  }
+  return residuals <= range_noise_m * range_noise_m *
+                          ChiSquareQuantile(probability, static_cast<double>(n) - 3.0);
+}
 
 // The middle index of the inner points within `tolerance_m` of `furthest_m` from the chord
 // (ChordDistances, FurthestFromChord's distance).
@@ -114,7 +150,7 @@ std::size_t NearFurthestMiddle(std::span<const double> distances, double furthes
 
 FrontSideRange FrontSide(std::span<const Vector2d> points, const Vector2d& lidar,
                          const SegmentationOptions& options) {
-  const FrontSideRange whole{0, points.size(), false};
+  const FrontSideRange whole{0, points.size(), false, false};
   if (points.size() < 3) return whole;
   const std::vector<double> chord_distances = ChordDistances(points);
   const auto [corner, distance] = FurthestFromChord(chord_distances);
@@ -155,14 +191,16 @@ FrontSideRange FrontSide(std::span<const Vector2d> points, const Vector2d& lidar
                    (arc_like_split &&
                     balanced(NearFurthestMiddle(chord_distances, distance,
                                                 options.arc_top_sigmas * options.range_noise_m)));
-  if (std::max(l1, l2) < options.min_box_side_m && arc) {
-    return {0, points.size(), true};
-  }
+  const bool small = std::max(l1, l2) < options.min_box_side_m;
+  if (small && arc) return {0, points.size(), true, false};
   const Vector2d to_lidar = lidar - (points[corner] + 0.5 * (side_1 + side_2));
   const bool first_is_front =
       std::abs(to_lidar.dot(side_2)) * l1 * l1 >= std::abs(to_lidar.dot(side_1)) * l2 * l2;
-  return first_is_front ? FrontSideRange{0, corner + 1, false}
-                        : FrontSideRange{corner, points.size(), false};
+  FrontSideRange front = first_is_front ? FrontSideRange{0, corner + 1, false, false}
+                                        : FrontSideRange{corner, points.size(), false, false};
+  front.arc_reading = small && CircleFits(points, lidar, points[corner], options.range_noise_m,
+                                          options.arc_reading_probability);
+  return front;
 }
 
 // Spacing of two neighbouring beams where they meet a surface of direction `along`, at range r.
@@ -203,42 +241,37 @@ double HiddenExtent(const LidarScan& scan, std::size_t end_beam, int step, const
   return cap_m;
 }
 
-LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
-                            std::span<const HitClass> classes, const SegmentationOptions& options) {
-  std::vector<Vector2d> points;
-  points.reserve(cluster.beams.size());
-  LidarObject o;
-  for (std::size_t i : cluster.beams) {
-    points.push_back(ReturnPoint(scan, i));
-    if (!classes.empty() && classes[i] == HitClass::kDynamic) o.dynamic = true;
-  }
+// The front of a cluster's returns [begin, end) (FrontSide's, or the whole cluster read as an
+// arc): its ends, middle and the middle's covariance, and how far each end may run on unseen;
+// for a round body's arc, moved to the body's nearest point. `points`: the cluster's returns.
+struct FrontRead {
+  LidarObject::FrontReading reading;
+  Vector2d direction = Vector2d::UnitX();  // the front's line, first return to last
+};
+FrontRead ReadFront(const LidarScan& scan, const ScanCluster& cluster,
+                    std::span<const Vector2d> points, std::size_t begin, std::size_t end,
+                    bool round_body, const SegmentationOptions& options) {
   const std::size_t n = points.size();
-  o.point_count = static_cast<std::uint32_t>(n);
-
-  // Not a structured binding: the lambda below captures both, which clang 14 does not allow of
-  // bindings (C++20 does; the sanitizer and fuzz builds use clang).
-  const FrontSideRange side = FrontSide(points, scan.mount.translation, options);
-  const std::size_t begin = side.begin;
-  const std::size_t end = side.end;
+  LidarObject::FrontReading r;
   const std::span<const Vector2d> front(points.data() + begin, end - begin);
   const Line line = FitLine(front);
-  o.front_start_m = Project(line, front.front());
-  o.front_end_m = Project(line, front.back());
-  o.point_m = 0.5 * (o.front_start_m + o.front_end_m);
-  if (side.round_body) {
+  r.front_start_m = Project(line, front.front());
+  r.front_end_m = Project(line, front.back());
+  r.point_m = 0.5 * (r.front_start_m + r.front_end_m);
+  if (round_body) {
     // The point is the middle of the side facing the lidar, which for a round body is its
     // nearest point, r in front of its centre on the ray. The beams sample the arc evenly
     // across the ray, so the line through the returns' mean lies (pi / 4) r in front of the
     // centre: the segment moves (1 - pi / 4) r towards the lidar, r half its chord.
-    const Vector2d from_lidar = o.point_m - scan.mount.translation;
+    const Vector2d from_lidar = r.point_m - scan.mount.translation;
     const double range = from_lidar.norm();
-    const double radius = 0.5 * (o.front_end_m - o.front_start_m).norm();
+    const double radius = 0.5 * (r.front_end_m - r.front_start_m).norm();
     if (range > 0.0) {
       const Vector2d shift = -(1.0 - 0.25 * kPi) * radius / range * from_lidar;
-      o.front_start_m += shift;
-      o.front_end_m += shift;
-      o.point_m += shift;
-      o.round_body_shift_m = shift;
+      r.front_start_m += shift;
+      r.front_end_m += shift;
+      r.point_m += shift;
+      r.round_body_shift_m = shift;
     }
   }
 
@@ -258,7 +291,7 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
   // car-sized sides), so its variance along is the offset's second moment about zero,
   // (h_1^2 + h_2^2) / 48 + (h_2 - h_1)^2 / 16, plus the range noise's component along the
   // surface (at most sigma_r) at each end.
-  const double seen_m = (o.front_end_m - o.front_start_m).norm();
+  const double seen_m = (r.front_end_m - r.front_start_m).norm();
   const double margin = options.breakpoint_noise_sigmas * options.range_noise_m;
   const auto extent = [&](bool at_start) {
     const std::size_t k = at_start ? begin : end - 1;
@@ -268,22 +301,46 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
     if (!outer) return spacing;
     const double cap = std::max(spacing, options.max_side_length_m - seen_m);
     return HiddenExtent(scan, cluster.beams[k], at_start ? -1 : 1, line,
-                        at_start ? o.front_start_m : o.front_end_m, at_start ? -u : u, margin, cap);
+                        at_start ? r.front_start_m : r.front_end_m, at_start ? -u : u, margin, cap);
   };
   // The line runs from the front's first beam to its last (FitLine), so the start's outward
   // is -u, beam index down.
   const double h1 = extent(true);
   const double h2 = extent(false);
-  o.hidden_start_m = h1;
-  o.hidden_end_m = h2;
+  r.hidden_start_m = h1;
+  r.hidden_end_m = h2;
   const double var_along =
       (h1 * h1 + h2 * h2) / 48.0 + (h2 - h1) * (h2 - h1) / 16.0 + sigma_r2 / 2.0;
   const double var_across = sigma_r2 / static_cast<double>(front.size());
   Matrix2d axes;
   axes.col(0) = u;
   axes.col(1) = v;
-  o.point_covariance =
+  r.point_covariance =
       axes * Eigen::Vector2d(var_along, var_across).asDiagonal() * axes.transpose();
+
+  return FrontRead{r, u};
+}
+
+LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
+                            std::span<const HitClass> classes, const SegmentationOptions& options) {
+  std::vector<Vector2d> points;
+  points.reserve(cluster.beams.size());
+  LidarObject o;
+  for (std::size_t i : cluster.beams) {
+    points.push_back(ReturnPoint(scan, i));
+    if (!classes.empty() && classes[i] == HitClass::kDynamic) o.dynamic = true;
+  }
+  const std::size_t n = points.size();
+  o.point_count = static_cast<std::uint32_t>(n);
+
+  const FrontSideRange side = FrontSide(points, scan.mount.translation, options);
+  const FrontRead front =
+      ReadFront(scan, cluster, points, side.begin, side.end, side.round_body, options);
+  o.SetFront(front.reading);
+  if (side.arc_reading)
+    o.arc_reading = ReadFront(scan, cluster, points, 0, n, true, options).reading;
+  const Vector2d u = front.direction;
+  const Vector2d v(-u.y(), u.x());
 
   Vector2d centroid = Vector2d::Zero();
   for (const Vector2d& p : points) centroid += p;
@@ -342,6 +399,9 @@ void SegmentationOptions::Validate(const std::string& source) const {
         "must be finite and >= 0");
   check(std::isfinite(arc_max_chord_ratio) && arc_max_chord_ratio >= 1.0, "arc_max_chord_ratio",
         "must be finite and >= 1");
+  check(std::isfinite(arc_reading_probability) && arc_reading_probability >= 0.0 &&
+            arc_reading_probability < 1.0,
+        "arc_reading_probability", "must be in [0, 1)");
   check(std::isfinite(max_side_length_m) && max_side_length_m > 0.0, "max_side_length_m",
         "must be finite and > 0");
   check(std::isfinite(velocity_unknown_sigma_mps) && velocity_unknown_sigma_mps > 0.0,

@@ -24,7 +24,8 @@
 //                  stereo::FrontSegmentFacing defines it for the camera and the truth. A small
 //                  L symmetric in its returns is a round body's arc: kept whole, moved towards
 //                  the lidar to the body's nearest point. Its ends are the projections of its
-//                  first and last points on the line.
+//                  first and last points on the line. A small L a circle fits within the
+//                  noise carries that arc's reading too (arc_reading), for the camera to choose.
 //   point_m        the front segment's middle; covariance from the range and bearing noise
 //                  (the line's offset, sigma_r^2 / n across it) and from where the ends really
 //                  are, along it: the object's edge lies anywhere between the last return on
@@ -94,6 +95,13 @@ struct SegmentationOptions {
   // the furthest return alone, as before 2026-12-05.
   double arc_top_sigmas = 2.0;
   double arc_max_chord_ratio = 2.0;
+  // A small L (both sides under min_box_side_m) that is no arc by the balance above is read as
+  // an arc as well (LidarObject::arc_reading) where a circle through its returns, bulging
+  // towards the lidar, leaves residuals the range noise makes with at least this probability
+  // (a chi-square of n - 3 degrees of freedom). A walker half hidden by another shows part of
+  // its arc, whose furthest return from the chord is off the middle of its returns: of the
+  // crowd's 114 small Ls, most are such arcs. 0: off.
+  double arc_reading_probability = 0.99;
   // Report only the dynamic objects (the paper's list, IV.D); false keeps static ones too.
   bool dynamic_only = true;
   // With dynamic_only, report the unmapped objects too (every return unknown: on cells the map
