@@ -8,7 +8,6 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -113,8 +112,11 @@ struct LidarObject {
   // walker half hidden shows an arc whose furthest return from its chord is off its middle, so
   // the segmentation takes it for an L and one leg for the front). The whole cluster read as
   // an arc, as the segmentation reads one; the fields above hold the L. The fusion takes this
-  // where the camera's box is a circle (fusion::ReadAsBody). Absent otherwise.
-  std::optional<FrontReading> arc_reading;
+  // where the camera's box is a circle (fusion::ReadAsBody). Only where has_arc_reading: a flag,
+  // not a std::optional, whose copies GCC 12's -Wmaybe-uninitialized misreads at -O3 in the
+  // unity build (the Eigen members of its payload).
+  bool has_arc_reading = false;
+  FrontReading arc_reading;
 
   // The object with its front read as `reading` says.
   void SetFront(const FrontReading& reading) {

@@ -244,6 +244,7 @@ TEST(FuseObjectsTest, AWalkersSmallLIsFusedAsItsArc) {
   arc.hidden_start_m = 0.05;
   arc.hidden_end_m = 0.05;
   paired.arc_reading = arc;
+  paired.has_arc_reading = true;
   LidarObject alone = paired;
   alone.id = 8;
   alone.point_m = Vector2d(15.0, 6.0);
@@ -263,7 +264,7 @@ TEST(FuseObjectsTest, AWalkersSmallLIsFusedAsItsArc) {
   const LidarObject read = ReadAsBody(paired, body, options.lidar_point);
   const LidarSidePoint side =
       FacingSidePoint(read, body, kLidarMount.translation, options.lidar_point);
-  paired.arc_reading.reset();
+  paired.has_arc_reading = false;
   const LidarSidePoint l_side =
       FacingSidePoint(paired, body, kLidarMount.translation, options.lidar_point);
   EXPECT_LT((result.frame.objects[0].front_end_m - side.front_end_m).norm(), 1e-12);

@@ -152,8 +152,8 @@ std::optional<double> RoundBodyRadius(const PairedBody& body,
 LidarObject ReadAsBody(const LidarObject& object, const PairedBody& body,
                        const LidarPointModelOptions& options) {
   LidarObject read = object;
-  if (object.arc_reading && options.round_body && RoundBodyRadius(body, options)) {
-    read.SetFront(*object.arc_reading);
+  if (object.has_arc_reading && options.round_body && RoundBodyRadius(body, options)) {
+    read.SetFront(object.arc_reading);
   }
   return read;
 }

@@ -192,7 +192,7 @@ std::optional<double> RoundBodyRadius(const PairedBody& body,
                                       const LidarPointModelOptions& options);
 
 // The lidar object as the camera's body reads it: where the scan read a small L as a round
-// body's arc too (LidarObject::arc_reading) and the body is round (RoundBodyRadius, with
+// body's arc too (LidarObject::has_arc_reading) and the body is round (RoundBodyRadius, with
 // options.round_body), the arc, whole; else the object as it is. A walker half hidden by
 // another shows part of its arc, which the segmentation takes for an L and one leg for the
 // front: the crowd's such legs had fused points at NEES 2.8 where whole arcs had 2.0

@@ -423,6 +423,7 @@ TEST(LidarPointModelTest, ASmallLIsReadAsAnArcWhereTheCameraSeesACircle) {
   arc.hidden_start_m = 0.04;
   arc.hidden_end_m = 0.9;
   l.arc_reading = arc;
+  l.has_arc_reading = true;
   const auto same_front = [](const LidarObject& o, const LidarObject::FrontReading& r) {
     return o.point_m == r.point_m && o.point_covariance == r.point_covariance &&
            o.front_start_m == r.front_start_m && o.front_end_m == r.front_end_m &&
@@ -444,7 +445,7 @@ TEST(LidarPointModelTest, ASmallLIsReadAsAnArcWhereTheCameraSeesACircle) {
   options.round_body = false;
   EXPECT_TRUE(same_front(ReadAsBody(l, walker, options), as_l));
   options.round_body = true;
-  l.arc_reading.reset();
+  l.has_arc_reading = false;
   EXPECT_TRUE(same_front(ReadAsBody(l, walker, options), as_l));
 }
 

@@ -337,8 +337,10 @@ LidarObject DescribeCluster(const LidarScan& scan, const ScanCluster& cluster,
   const FrontRead front =
       ReadFront(scan, cluster, points, side.begin, side.end, side.round_body, options);
   o.SetFront(front.reading);
-  if (side.arc_reading)
+  if (side.arc_reading) {
+    o.has_arc_reading = true;
     o.arc_reading = ReadFront(scan, cluster, points, 0, n, true, options).reading;
+  }
   const Vector2d u = front.direction;
   const Vector2d v(-u.y(), u.x());
 

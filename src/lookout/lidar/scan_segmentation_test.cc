@@ -306,8 +306,8 @@ TEST(ScanSegmentation, ASmallLACircleFitsIsReadAsAnArcToo) {
   const Eigen::Vector2d ray = (centre - scan.mount.translation).normalized();
   const Eigen::Vector2d nearest = centre - 0.3 * ray;
   EXPECT_EQ(o.round_body_shift_m.norm(), 0.0);  // the L
-  ASSERT_TRUE(o.arc_reading.has_value());
-  const LidarObject::FrontReading& arc = *o.arc_reading;
+  ASSERT_TRUE(o.has_arc_reading);
+  const LidarObject::FrontReading& arc = o.arc_reading;
   EXPECT_GT(arc.round_body_shift_m.norm(), 0.0);
   const Eigen::Vector2d across(-ray.y(), ray.x());
   const auto chord = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -322,13 +322,13 @@ TEST(ScanSegmentation, ASmallLACircleFitsIsReadAsAnArcToo) {
   off.arc_reading_probability = 0.0;
   const LidarObjectFrame g = SegmentScan(scan, {}, Pose2(), off, 0.1);
   ASSERT_EQ(g.objects.size(), 1u);
-  EXPECT_FALSE(g.objects[0].arc_reading.has_value());
+  EXPECT_FALSE(g.objects[0].has_arc_reading);
 
   const sim::Shape box = sim::Shape::Box(Pose2(6.0, 0.0, 0.35), 0.6, 0.6, sim::kStaticOwner);
   const LidarObjectFrame b = SegmentScan(CastScan({box}), {}, Pose2(), KeepAll(), 0.1);
   ASSERT_EQ(b.objects.size(), 1u);
   EXPECT_EQ(b.objects[0].round_body_shift_m.norm(), 0.0);
-  EXPECT_FALSE(b.objects[0].arc_reading.has_value());
+  EXPECT_FALSE(b.objects[0].has_arc_reading);
 }
 
 TEST(ScanSegmentation, OneDynamicPointMakesTheObjectDynamic) {
