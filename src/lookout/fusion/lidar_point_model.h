@@ -264,6 +264,9 @@ LidarSidePoint FacingSidePoint(const LidarObject& object, const PairedBody& body
                                const LidarPointModelOptions& options);
 // The same with the object's point covariance under the model already at hand
 // (LidarPointCovariance with the same arguments): FuseObjects keeps it on the lidar object too.
+// `object` itself keeps the covariance its source gave: the segment's heading and offset are
+// read from it (handed an object whose covariance was the model's, right-turn-cyclist's fused
+// NEES went 1.64 -> 1.20).
 LidarSidePoint FacingSidePoint(const LidarObject& object, const Eigen::Matrix2d& point_covariance,
                                const PairedBody& body, const Eigen::Vector2d& lidar_origin_m,
                                const LidarPointModelOptions& options);

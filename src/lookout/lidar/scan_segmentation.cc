@@ -96,13 +96,14 @@ std::pair<std::size_t, double> FurthestFromChord(std::span<const double> distanc
 struct FrontSideRange {
   std::size_t begin = 0, end = 0;
   bool round_body = false;
-  bool arc_reading =
-      false;  // a small L a circle fits too (SegmentationOptions::arc_reading_probability)
+  // A small L a circle fits too (SegmentationOptions::arc_reading_probability).
+  bool arc_reading = false;
 };
 
 // Whether a circle through `points` bulging towards `lidar` (its centre further from the lidar
-// than `corner`) leaves residuals the range noise makes with probability `probability`: their
-// sum of squares under sigma_r^2 times the chi-square quantile of n - 3 degrees of freedom.
+// than `corner`) leaves residuals the range noise alone would exceed with probability at least
+// 1 - `probability`: their sum of squares under sigma_r^2 times the chi-square quantile of
+// n - 3 degrees of freedom.
 // Kasa's algebraic fit (x^2 + y^2 + D x + E y + F = 0 by least squares): closed form, and
 // near the geometric fit for arcs of a quarter circle and more, which an L's two sides span;
 // the test takes the geometric residuals of its circle. Three points fit any circle: false.
