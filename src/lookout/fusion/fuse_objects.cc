@@ -257,11 +257,11 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
       const stereo::StereoPoint& s = stereo[*i];
       const PairedBody body{s.object_class, s.footprint.length_m, s.footprint.width_m,
                             s.front.end_m - s.front.start_m, s.yaw_variance};
-      // What the lidar alone measured, as the camera's body reads the returns.
-      const LidarObject read = ReadAsBody(l, body, options.lidar_point);
-      as_fused = read;
-      as_fused.point_covariance =
-          LidarPointCovariance(read, body, lidar.mount.translation, options.lidar_point);
+      // What the lidar alone measured, as the camera's body reads the returns. It takes the
+      // model's covariance below, once FacingSidePoint has read the segment's own from it.
+      as_fused = ReadAsBody(l, body, options.lidar_point);
+      const Matrix2d modelled =
+          LidarPointCovariance(as_fused, body, lidar.mount.translation, options.lidar_point);
       if (pairing.footprint_pair[j]) {
         // Two sides' middles are not one point: the camera's is kept, with its front.
         f.point_m = stereo_points[*i].point_m;
@@ -273,8 +273,8 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
         // The lidar's point for the side the camera's box turns to it, the segment's middle
         // unless a corner view says another side faces (FacingSidePoint). The lidar object
         // itself keeps its own point: what the lidar alone measured.
-        const LidarSidePoint side = FacingSidePoint(read, as_fused.point_covariance, body,
-                                                    lidar.mount.translation, options.lidar_point);
+        const LidarSidePoint side =
+            FacingSidePoint(as_fused, modelled, body, lidar.mount.translation, options.lidar_point);
         const Gaussian2 lidar_point{side.point_m, side.covariance};
         const Gaussian2 stereo_point{stereo_points[*i].point_m, stereo_points[*i].covariance};
         // The camera's heading, where it turned the lidar's point too, counted once.
@@ -298,6 +298,7 @@ FuseObjectsResult FuseObjects(const LidarObjectFrame& lidar,
                                                    history, two_bodies_quantile);
         }
       }
+      as_fused.point_covariance = modelled;
       const Gaussian2 velocity = FusedVelocity(l, s, options.velocity_source);
       f.velocity_mps = velocity.mean;
       f.velocity_covariance = velocity.covariance;
