@@ -74,7 +74,7 @@ std::vector<SearchWindow> SourceWindows(
   const std::size_t n = locals.size();
   std::vector<SearchWindow> windows(n);
   std::vector<std::uint8_t> wide(n, 0);
-  ParallelForBlocks(n, 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(n, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       windows[s] = SearchWindowFor(static_cast<double>(velocity_x_mps[s]),
                                    static_cast<double>(velocity_y_mps[s]),
@@ -140,7 +140,7 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   a.rigidity.resize(sources * kNeighbourCount);
   a.first_entry.resize(sources + 1);
   a.first_entry[0] = 0;
-  ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(sources, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       const std::size_t cell = a.source[s];
       a.occupancy[s] = occupancy[cell];
@@ -171,7 +171,7 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   const bool with_share = options.moved_share_exponent > 0.0;
   if (with_share) a.stay_share.assign(entries, 0.0f);
 
-  ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(sources, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       const SearchWindow& w = a.window[s];
       const CellIndex from = a.source_local[s];

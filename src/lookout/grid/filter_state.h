@@ -254,6 +254,11 @@ double GatherWeighted(const Associations& a, const TargetIndex& targets, std::ui
   return sum;
 }
 
+// Sources per block in the per-source parallel loops. Why so few: a wide window costs 3.5 to 6
+// times a fine one and sources come in runs of one kind (a body newly seen), so blocks of 256
+// (four for the junction's 824 sources) left one of two threads most of the work.
+inline constexpr std::size_t kSourceBlock = 32;
+
 // Runs body(begin, end) over [0, n) in blocks of at most `block` items, in parallel. Callers write
 // only to items of their own block, so the result does not depend on the thread count.
 template <typename Body>

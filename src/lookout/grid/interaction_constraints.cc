@@ -120,7 +120,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
   // Offsets between two samples of windows up to 31 wide, stride 4, centred up to 64 cells apart.
   const std::vector<double> integer_kernel = IntegerKernel(r2, 4 * 64 + 4 * 31);
   if (options.enable_rigidity_constraint) {
-    ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+    ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
       std::vector<double> kernel, rows, column;
       std::size_t kernel_n = 0;
       int kernel_stride = 0;
@@ -195,7 +195,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
   const double inv_two_nc_var =
       1.0 / (2.0 * options.no_convergence_sigma * options.no_convergence_sigma);
   std::vector<float> constrained(a.EntryCount());
-  ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     struct Link {
       double strength;
       const SearchWindow* window;  // y's

@@ -3,7 +3,7 @@
 namespace lookout::grid {
 
 void WeightByMeasurement(const MeasurementGrid& z, Associations& a) {
-  ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       const std::size_t first = a.first_entry[s];
       const std::size_t last = a.first_entry[s + 1];

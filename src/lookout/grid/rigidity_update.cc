@@ -5,7 +5,7 @@ namespace lookout::grid {
 std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndexer& indexer,
                                         const FilterWorkspace& workspace) {
   std::vector<float> links(a.SourceCount() * kNeighbourCount, 0.0f);
-  ParallelForBlocks(a.SourceCount(), 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t x = begin; x < end; ++x) {
       const SearchWindow& wx = a.window[x];
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {

@@ -322,10 +322,17 @@ std::vector<FlowMeasurement> ScanFlow::MeasureCells(std::span<const CellIndex> c
                                                     std::span<const std::uint8_t> wanted) const {
   std::vector<FlowMeasurement> out(cells.size());
   if (!has_pair_) return out;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 256),
+  // The wanted cells, a tenth of the sources on the junction and in runs (a body newly seen),
+  // shared out one by one: a measurement costs some microseconds, and blocks of cells left one
+  // thread the runs.
+  std::vector<std::size_t> measured;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (wanted[i] != 0) measured.push_back(i);
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, measured.size(), 1),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        if (wanted[i] != 0) out[i] = Measure(cells[i]);
+                      for (std::size_t m = r.begin(); m != r.end(); ++m) {
+                        out[measured[m]] = Measure(cells[measured[m]]);
                       }
                     });
   // Ambiguous staying connected to measured motion is not staying: a car's long side matches

@@ -23,7 +23,7 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
   // Per source: the mean and variance of where its mass went (its displacement posterior).
   const std::size_t sources = a.SourceCount();
   std::vector<double> source_mean_x(sources), source_mean_y(sources), variance(sources);
-  ParallelForBlocks(sources, 256, [&](std::size_t begin, std::size_t end) {
+  ParallelForBlocks(sources, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       double w_sum = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
       const std::size_t first = a.first_entry[s];
