@@ -24,9 +24,11 @@
 #include "lookout/app/stage_benchmarks.h"
 #include "lookout/core/messages.h"
 #include "lookout/core/pose2.h"
+#include "lookout/grid/association_prediction.h"
 #include "lookout/grid/cluster_motion.h"
 #include "lookout/grid/extended_grid.h"
 #include "lookout/grid/inverse_sensor_model.h"
+#include "lookout/grid/measurement_weighting.h"
 #include "lookout/grid/reference_filter.h"
 #include "lookout/grid/scrolling_grid.h"
 #include "lookout/io/scenario_loader.h"
@@ -248,6 +250,30 @@ void BM_ClusterMotionSimJunction(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ClusterMotionSimJunction)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The target index alone (filter_state.h: each entry filed under its target, in source order),
+// on the junction cycle's associations: the serial part between steps 3 and 4.
+void BM_TargetIndexSimJunction(benchmark::State& state) {
+  const app::GridCycleInput& input = SimJunction();
+  const ExtendedGrid& grid = input.before;
+  ScanFlow flow = grid.scan_flow();
+  flow.Prepare(input.z);
+  const WindowIndexer indexer(grid.geometry());
+  Associations associations = PredictAssociations(grid.layers(), grid.ids(), indexer, input.z,
+                                                  input.dt_s, grid.options(), &flow);
+  WeightByMeasurement(input.z, associations);
+  FilterWorkspace workspace;
+  workspace.Resize(grid.geometry().CellCount());
+  std::size_t targets = 0;
+  for (auto _ : state) {
+    const TargetIndex index = BuildTargetIndex(associations, workspace);
+    targets = index.targets.size();
+    benchmark::DoNotOptimize(index.entries.data());
+  }
+  state.counters["entries"] = static_cast<double>(associations.EntryCount());
+  state.counters["targets"] = static_cast<double>(targets);
+}
+BENCHMARK(BM_TargetIndexSimJunction)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // The literal reference of the same stages as the fast path's motion_ms, on the same scan pair
 // (its preparation timed, as in the fast path).

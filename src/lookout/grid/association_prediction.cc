@@ -114,7 +114,6 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
 
   // Sources in storage order (a fixed order for a given window: every later sum follows it).
   // One pass over two contiguous layers; the local cell is computed only for the sources.
-  const ScrollingGridGeometry& geometry = layers.geometry();
   // IsSource in float, so that the scan of the whole window compares floats: for a float x,
   // x >= t exactly when x >= the smallest float not below t (the same decisions as IsSource).
   const auto at_least = [](double t) {
@@ -124,11 +123,24 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   const float active = at_least(options.active_occupancy);
   const float tracked = at_least(options.tracked_min_occupancy);
   const float seen_threshold = at_least(options.seen_threshold);
-  for (std::size_t cell = 0; cell < occupancy.size(); ++cell) {
+  // Bitwise, not short-circuit: both layers read, no branch.
+  const auto is_source = [&](std::size_t cell) {
     const float o = occupancy[cell];
-    if (!(o >= active || (o >= tracked && seen[cell] >= seen_threshold))) continue;
-    a.source.push_back(cell);
-    a.source_local.push_back(geometry.LocalFromGlobal(geometry.GlobalFromStorage(cell)));
+    return (o >= active) | ((o >= tracked) & (seen[cell] >= seen_threshold));
+  };
+  // Blocks of cells tested first without a branch (the test vectorises): the window's 160,000
+  // cells hold a few hundred sources, and a branch per cell cost 0.2 ms a cycle.
+  constexpr std::size_t kBlock = 64;
+  for (std::size_t begin = 0; begin < occupancy.size(); begin += kBlock) {
+    const std::size_t end = std::min(begin + kBlock, occupancy.size());
+    int count = 0;
+    for (std::size_t cell = begin; cell < end; ++cell) count += is_source(cell) ? 1 : 0;
+    if (count == 0) continue;
+    for (std::size_t cell = begin; cell < end; ++cell) {
+      if (!is_source(cell)) continue;
+      a.source.push_back(cell);
+      a.source_local.push_back(indexer.Local(cell));
+    }
   }
   const std::size_t sources = a.SourceCount();
   a.occupancy.resize(sources);

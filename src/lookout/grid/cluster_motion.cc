@@ -449,9 +449,8 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
   const std::span<float> confidence = layers.Values(ids.velocity_confidence);
   const std::span<float> seen = layers.Values(ids.seen);
   const double cells_per_mps = dt_s / g.cell_size_m();
-  const auto local_of = [&](std::size_t storage) {
-    return g.LocalFromGlobal(g.GlobalFromStorage(storage));
-  };
+  const WindowIndexer indexer(g);
+  const auto local_of = [&](std::size_t storage) { return indexer.Local(storage); };
   const auto hit_now = [&](std::size_t storage) { return z.p_occupied[storage] > 0.5f; };
   // Storage order, across clusters: every cluster's cells first, so that no cluster takes
   // another's cells among its attached hits.

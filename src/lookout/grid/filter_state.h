@@ -68,12 +68,25 @@ class WindowIndexer {
   // consecutive storage cells from here (in storage-column order, not local x order).
   // Precondition: 0 <= local_y < height().
   std::size_t RowStorage(int local_y) const { return row_base_[static_cast<std::size_t>(local_y)]; }
+  // The window-local cell stored at `storage`, the inverse of Storage: one 32-bit division and
+  // two table reads. Why: the loops over a scan's touched cells (some 23,000 a cycle on the
+  // junction) spent 14 ns a cell in ScrollingGridGeometry's
+  // LocalFromGlobal(GlobalFromStorage(.)), four divisions. Precondition: storage < width() *
+  // height().
+  CellIndex Local(std::size_t storage) const {
+    const auto s = static_cast<std::uint32_t>(storage);
+    const std::uint32_t row = s / static_cast<std::uint32_t>(width_);
+    const std::uint32_t column = s - row * static_cast<std::uint32_t>(width_);
+    return {local_x_of_column_[column], local_y_of_row_[row]};
+  }
 
  private:
   int width_;
   int height_;
   std::vector<std::size_t> column_;
   std::vector<std::size_t> row_base_;
+  std::vector<int> local_x_of_column_;  // storage column -> local x
+  std::vector<int> local_y_of_row_;     // storage row -> local y
 };
 
 inline constexpr std::int64_t kOutsideWindow = -1;

@@ -257,6 +257,50 @@ TEST(ScanFlowTest, AmbiguousStayingConnectedToMotionIsUnknown) {
   EXPECT_EQ(m[index_of({25, 20})].kind, FlowKind::kUnknown);
 }
 
+// Prepare lays this scan's hits and free cells on the window row by row from storage; the
+// maps must be those of the cells' own window coordinates wherever the window has scrolled
+// (its storage wraps inside each row and between rows).
+TEST(ScanFlowTest, PrepareLaysTheScanOnTheWindowWhereverItScrolled) {
+  const std::uint64_t seed = 3101;
+  std::mt19937_64 rng(seed);
+  ScanFlowOptions options;
+  options.enabled = true;
+  options.long_lag_scans = 2;
+  for (const CellIndex origin : {CellIndex{0, 0}, CellIndex{-5, 7}, CellIndex{37, -70}}) {
+    const ScrollingGridGeometry g(0.15, kSide, kSide - 9, origin);
+    const auto random_scan = [&](TimeNs stamp) {
+      MeasurementGrid z{g, stamp, std::vector<float>(g.CellCount(), 0.5f), {}, {}};
+      for (std::size_t s = 0; s < g.CellCount(); ++s) {
+        const auto draw = rng() % 10;
+        if (draw >= 3) continue;
+        z.p_occupied[s] = draw == 0 ? 0.7f : 0.3f;
+        z.touched.push_back(s);
+      }
+      return z;
+    };
+    ScanFlow flow(options);
+    flow.Remember(random_scan(1));
+    flow.Remember(random_scan(2));
+    const MeasurementGrid z = random_scan(3);
+    flow.Prepare(z);
+    // The maps by their definition, from each touched cell's window coordinates.
+    HitMaps expected;
+    expected.Reset(g.width(), g.height());
+    for (const std::size_t s : z.touched) {
+      const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(s));
+      if (z.p_occupied[s] > 0.5f) expected.AddNow(local.ix, local.iy);
+      if (z.p_occupied[s] < 0.5f) expected.AddFreeNow(local.ix, local.iy);
+    }
+    ASSERT_NE(flow.long_pair(), nullptr);
+    for (const HitMaps* maps : {&flow.short_pair(), flow.long_pair()}) {
+      EXPECT_EQ(maps->now, expected.now)
+          << "seed " << seed << ", origin " << origin.ix << " " << origin.iy;
+      EXPECT_EQ(maps->free_now, expected.free_now)
+          << "seed " << seed << ", origin " << origin.ix << " " << origin.iy;
+    }
+  }
+}
+
 TEST(ScanFlowTest, OptionsOutOfRangeAreNamed) {
   ScanFlowOptions options;
   options.patch_half_cells = 9;
