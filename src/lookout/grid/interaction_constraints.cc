@@ -120,29 +120,42 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
   // Offsets between two samples of windows up to 31 wide, stride 4, centred up to 64 cells apart.
   const std::vector<double> integer_kernel = IntegerKernel(r2, 4 * 64 + 4 * 31);
   if (options.enable_rigidity_constraint) {
+    // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table per window shape (a fine
+    // and a coarse one), built once before the loop, so both passes are plain dot products.
+    // (Rebuilt inside the loop at each change of shape, they cost 78 tables of 49-169
+    // exponentials a cycle on the junction: docs/PERFORMANCE.md, "The constraints' exponentials".)
+    struct KernelTable {
+      std::size_t n;
+      int stride;
+      std::vector<double> k;
+    };
+    std::vector<KernelTable> tables;
+    for (const SearchWindow& w : a.window) {
+      const auto n = static_cast<std::size_t>(w.size());
+      const bool known = std::any_of(tables.begin(), tables.end(), [&](const KernelTable& t) {
+        return t.n == n && t.stride == w.stride;
+      });
+      if (known) continue;
+      KernelTable& table =
+          tables.emplace_back(KernelTable{n, w.stride, std::vector<double>(n * n)});
+      for (std::size_t u = 0; u < n; ++u) {
+        for (std::size_t u2 = 0; u2 < n; ++u2) {
+          const double dist =
+              static_cast<double>(w.stride) * (static_cast<double>(u) - static_cast<double>(u2));
+          table.k[u * n + u2] = std::exp(-dist * dist / (2.0 * r2));
+        }
+      }
+    }
     ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
-      std::vector<double> kernel, rows, column;
-      std::size_t kernel_n = 0;
-      int kernel_stride = 0;
+      std::vector<double> rows, column;
       for (std::size_t s = begin; s < end; ++s) {
         if (!exact) moments[s] = MomentsOf(a, s);
         const SearchWindow& w = a.window[s];
         const auto n = static_cast<std::size_t>(w.size());
-        // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table, rebuilt only when
-        // the window's shape changes (sources come in runs of one shape: fine or coarse), so
-        // both passes are plain dot products.
-        if (n != kernel_n || w.stride != kernel_stride) {
-          kernel.assign(n * n, 0.0);
-          for (std::size_t u = 0; u < n; ++u) {
-            for (std::size_t u2 = 0; u2 < n; ++u2) {
-              const double dist = static_cast<double>(w.stride) *
-                                  (static_cast<double>(u) - static_cast<double>(u2));
-              kernel[u * n + u2] = std::exp(-dist * dist / (2.0 * r2));
-            }
-          }
-          kernel_n = n;
-          kernel_stride = w.stride;
-        }
+        const std::vector<double>& kernel =
+            std::find_if(tables.begin(), tables.end(), [&](const KernelTable& t) {
+              return t.n == n && t.stride == w.stride;
+            })->k;
         const float* p = &a.weight[a.first_entry[s]];
         rows.assign(n * n, 0.0);
         // Both passes accumulate whole rows (the inner loops have no reduction and vectorise);
@@ -227,8 +240,34 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
                                      &blurred[a.first_entry[y]], &moments[y], same_lattice};
         }
       }
+      // A link through its moments: the Gaussian r^2 / var exp(-|d - mean|^2 / (2 var)) over
+      // this window's lattice as a column factor times a row factor, 2n exponentials where one
+      // per entry took 26,000 a cycle on the junction (docs/PERFORMANCE.md, "The constraints'
+      // exponentials"); the dense core's few entries take theirs whole.
+      constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
+      struct Separable {
+        double scale;
+        std::array<double, kMaxSide> column, row;
+      };
+      std::array<Separable, kNeighbourCount> separable;
+      const int side = w.size();
+      for (std::size_t l = 0; l < link_count; ++l) {
+        if (links[l].same_lattice || exact) continue;
+        const DisplacementMoments& m = *links[l].moments;
+        const double var = r2 + m.variance_cells2;
+        Separable& g = separable[l];
+        g.scale = r2 / var;
+        for (int u = 0; u < side; ++u) {
+          const double offset = w.stride * (u - w.half);
+          const double ex = w.center.ix + offset - m.mean_x_cells;
+          const double ey = w.center.iy + offset - m.mean_y_cells;
+          g.column[static_cast<std::size_t>(u)] = std::exp(-ex * ex / (2.0 * var));
+          g.row[static_cast<std::size_t>(u)] = std::exp(-ey * ey / (2.0 * var));
+        }
+      }
       double sum = 0.0;
-      w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
+      // Entry k, displacement d, at lattice column u and row v (u < 0: the dense core).
+      const auto constrain = [&](std::size_t k, const CellIndex& d, int u, int v) {
         const std::size_t e = first + k;
         double p = static_cast<double>(a.weight[e]);
         if (options.enable_no_convergence_constraint && a.target[e] != kOutsideWindow) {
@@ -236,27 +275,40 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           const double excess = others + o_j - 1.0;
           if (excess > 0.0) p *= std::exp(-excess * excess * inv_two_nc_var);
         }
-        if (link_count > 0) {
-          for (std::size_t l = 0; l < link_count; ++l) {
-            const Link& link = links[l];
-            double agree = 0.0;
-            if (link.same_lattice) {
-              agree = static_cast<double>(link.blurred[k]);
-            } else if (exact) {
-              const std::int64_t ky = link.window->EntryOf(d);
-              agree = ky >= 0 ? static_cast<double>(link.blurred[static_cast<std::size_t>(ky)])
-                              : BlurAt(*link.window, link.weight, d, integer_kernel);
-            } else {
-              const double var = r2 + link.moments->variance_cells2;
-              const double ex = d.ix - link.moments->mean_x_cells;
-              const double ey = d.iy - link.moments->mean_y_cells;
-              agree = r2 / var * std::exp(-(ex * ex + ey * ey) / (2.0 * var));
-            }
-            p *= (1.0 - link.strength) + link.strength * agree;
+        for (std::size_t l = 0; l < link_count; ++l) {
+          const Link& link = links[l];
+          double agree = 0.0;
+          if (link.same_lattice) {
+            agree = static_cast<double>(link.blurred[k]);
+          } else if (exact) {
+            const std::int64_t ky = link.window->EntryOf(d);
+            agree = ky >= 0 ? static_cast<double>(link.blurred[static_cast<std::size_t>(ky)])
+                            : BlurAt(*link.window, link.weight, d, integer_kernel);
+          } else if (u >= 0) {
+            const Separable& g = separable[l];
+            agree = g.scale * g.column[static_cast<std::size_t>(u)] *
+                    g.row[static_cast<std::size_t>(v)];
+          } else {
+            const double var = r2 + link.moments->variance_cells2;
+            const double ex = d.ix - link.moments->mean_x_cells;
+            const double ey = d.iy - link.moments->mean_y_cells;
+            agree = r2 / var * std::exp(-(ex * ex + ey * ey) / (2.0 * var));
           }
+          p *= (1.0 - link.strength) + link.strength * agree;
         }
         constrained[e] = static_cast<float>(p);
         sum += p;
+      };
+      // ForEachDisplacement's order: the lattice row by row, then the dense core.
+      std::size_t entry = 0;
+      for (int v = 0; v < side; ++v) {
+        const int dy = w.center.iy + w.stride * (v - w.half);
+        for (int u = 0; u < side; ++u, ++entry) {
+          constrain(entry, CellIndex{w.center.ix + w.stride * (u - w.half), dy}, u, v);
+        }
+      }
+      w.ForEachDenseOffset([&](std::size_t j, const CellIndex& o) {
+        constrain(j, CellIndex{w.center.ix + o.ix, w.center.iy + o.iy}, -1, -1);
       });
       if (sum <= 0.0) {  // every move forbidden (underflow): keep Pw
         for (std::size_t k = 0; k < w.EntryCount(); ++k) {
