@@ -85,7 +85,8 @@ std::vector<std::uint8_t> DynamicCellMask(const GridLayers& layers, const Filter
   // of cells are ruled out first by a float test that vectorises and lets through every cell
   // the exact test below may keep (its threshold a float under min_occupancy): a branch per
   // cell cost more than the memory.
-  const float below_min = std::nextafter(static_cast<float>(min_occupancy), 0.0f);
+  const float below_min =
+      std::nextafter(static_cast<float>(min_occupancy), -std::numeric_limits<float>::infinity());
   const float* const o = occupancy.data();
   constexpr std::size_t kBlock = 64;
   for (std::size_t begin = 0; begin < occupancy.size(); begin += kBlock) {

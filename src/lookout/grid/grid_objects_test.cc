@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "lookout/core/input_error.h"
 
@@ -289,6 +293,56 @@ TEST(GridObjectsTest, ClassesMapOntoObjectClasses) {
   EXPECT_EQ(p[static_cast<std::size_t>(ObjectClass::kPole)], 0.0);
   const auto none = ToObjectClassPmf({0.0, 0.0, 0.0, 0.0, 0.0});
   EXPECT_EQ(none[static_cast<std::size_t>(ObjectClass::kUnknown)], 1.0);
+}
+
+// DynamicCellMask skips blocks of cells by a float test before its exact one: on random layers,
+// most values on or next to the thresholds (NaN among them), the mask is its definition.
+TEST(GridObjectsTest, DynamicCellMaskIsItsDefinitionAtTheThresholds) {
+  const std::uint64_t seed = 4409;
+  std::mt19937_64 rng(seed);
+  ExtendedGrid grid = MakeGrid();
+  GridLayers& layers = grid.mutable_layers();
+  const FilterLayerIds& ids = grid.ids();
+  const GridObjectOptions options;
+  const auto near = [&](double threshold) {
+    const auto f = static_cast<float>(threshold);
+    switch (rng() % 6) {
+      case 0:
+        return f;
+      case 1:
+        return std::nextafter(f, 0.0f);
+      case 2:
+        return std::nextafter(f, 2.0f);
+      case 3:
+        return std::numeric_limits<float>::quiet_NaN();
+      default:
+        return static_cast<float>(std::uniform_real_distribution<double>(0.0, 1.0)(rng));
+    }
+  };
+  const std::size_t cells = grid.geometry().CellCount();
+  for (std::size_t i = 0; i < cells; ++i) {
+    // Occupied cells sparse, as on the road: a block of cells holds one or none, so that a
+    // block whose only cell sits on the threshold is decided by the block test too.
+    const bool empty = i % 41 != 0;
+    layers.Values(ids.occupancy)[i] = empty ? 0.02f : near(options.min_occupancy);
+    layers.Values(ids.velocity_confidence)[i] =
+        empty ? 0.9f : near(options.min_velocity_confidence);
+    layers.Values(ids.velocity_x_mps)[i] = empty ? 3.0f : near(options.min_speed_mps);
+    layers.Values(ids.velocity_y_mps)[i] = rng() % 2 == 0 ? 0.0f : near(0.1);
+  }
+  const std::vector<std::uint8_t> mask = DynamicCellMask(layers, ids, options);
+  std::size_t dynamic = 0;
+  for (std::size_t i = 0; i < cells; ++i) {
+    const auto o = static_cast<double>(layers.Values(ids.occupancy)[i]);
+    const auto c = static_cast<double>(layers.Values(ids.velocity_confidence)[i]);
+    const auto vx = static_cast<double>(layers.Values(ids.velocity_x_mps)[i]);
+    const auto vy = static_cast<double>(layers.Values(ids.velocity_y_mps)[i]);
+    const bool expected = o > options.min_occupancy && c >= options.min_velocity_confidence &&
+                          vx * vx + vy * vy > options.min_speed_mps * options.min_speed_mps;
+    ASSERT_EQ(mask[i] != 0, expected) << "cell " << i << ", seed " << seed;
+    dynamic += expected ? 1 : 0;
+  }
+  EXPECT_GT(dynamic, cells / 1000);  // the test sees dynamic cells, not only empty ones
 }
 
 TEST(GridObjectsTest, ValidateNamesTheField) {
