@@ -232,7 +232,8 @@ std::vector<std::size_t> TrailingSide(const ScrollingGridGeometry& g,
 }
 
 // The still bodies of ClusterMotionOptions::still_bodies, among the cells `role` leaves free.
-void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, const ScanFlow& flow,
+void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z,
+                     std::span<const std::size_t> hits_now, const ScanFlow& flow,
                      std::vector<std::uint8_t>& role, double dt_s, double known_confidence,
                      const ClusterMotionOptions& options, std::span<float> occupancy,
                      std::span<float> seen, std::span<float> vx, std::span<float> vy,
@@ -252,7 +253,7 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
   HitBody body;
   // Bodies start from this scan's hits in the measurement's order; each body is measured and
   // written alone, so the order does not change the result.
-  for (const std::size_t first : z.touched) {
+  for (const std::size_t first : hits_now) {
     if (role[first] != kFree || !member(first)) continue;
     GrowBody(g, g.LocalFromGlobal(g.GlobalFromStorage(first)), member, role, body);
     // A body larger than a walker is measured only when most of it lies where the grid
@@ -323,16 +324,19 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z, c
 
 }  // namespace
 
-void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans) {
+std::vector<std::size_t> CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans) {
   constexpr float kCap = 1000.0f;  // 80 s at 12.5 Hz: far beyond any threshold, and exact
+  std::vector<std::size_t> hits;
   for (const std::size_t cell : z.touched) {
     const float p = z.p_occupied[cell];
     if (p > kUnknownProbability) {
       hit_scans[cell] = std::min(hit_scans[cell] + 1.0f, kCap);
+      hits.push_back(cell);
     } else if (p < kUnknownProbability) {
       hit_scans[cell] = 0.0f;  // seen free: whatever stood there left
     }
   }
+  return hits;
 }
 
 void ClusterMotionOptions::Validate(const std::string& source) const {
@@ -435,7 +439,7 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
                                       double known_confidence,
                                       const ClusterMotionOptions& options) {
   const std::span<float> hit_scans = layers.Values(ids.hit_scans);
-  CountHitScans(z, hit_scans);
+  const std::vector<std::size_t> hits_now = CountHitScans(z, hit_scans);
   ClusterStageOutput out;
   std::vector<MeasuredBody>& measured = out.measured;
   if (!options.enabled || !flow.HasPair()) return out;
@@ -568,8 +572,8 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     }
   }
   if (options.still_bodies) {
-    MoveStillBodies(g, z, flow, role, dt_s, known_confidence, options, occupancy, seen, vx, vy,
-                    confidence, measured);
+    MoveStillBodies(g, z, hits_now, flow, role, dt_s, known_confidence, options, occupancy, seen,
+                    vx, vy, confidence, measured);
   }
   for (GridCluster& cluster : clusters) out.clusters.push_back(std::move(cluster.cells));
   return out;

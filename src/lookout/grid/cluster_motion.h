@@ -206,8 +206,11 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
                                    const ClusterMotionOptions& options);
 
 // FilterLayerIds::hit_scans after the scan `z`: one more where it hits, 0 where it sees free,
-// unchanged where it says nothing. Pure on its arguments.
-void CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans);
+// unchanged where it says nothing. Returns the scan's hits (storage indices) in z.touched's
+// order, found on the way: the still bodies start from them (one walk over z.touched, whose
+// cells come in the rays' order, a cache miss each, where there were two). Pure on its
+// arguments.
+std::vector<std::size_t> CountHitScans(const MeasurementGrid& z, std::span<float> hit_scans);
 
 // A body the stage measured moving this cycle (a cluster or a still body): its cells (storage
 // indices) and its measured velocity.

@@ -369,13 +369,16 @@ TEST(CountHitScansTest, HitsCountUpFreeResetsUnobservedKeeps) {
   z.geometry = g;
   // Cells 0-3: hit, hit, free, unobserved; three scans, then cell 1 seen free.
   z.p_occupied = {0.7f, 0.7f, 0.3f, 0.5f};
-  z.touched = {0, 1, 2};
+  z.touched = {1, 2, 0};  // the rays' order, not storage order
   count[2] = 5.0f;
   count[3] = 7.0f;
-  for (int k = 0; k < 3; ++k) CountHitScans(z, count);
+  for (int k = 0; k < 3; ++k) {
+    // The hits come back in z.touched's order.
+    EXPECT_EQ(CountHitScans(z, count), (std::vector<std::size_t>{1, 0}));
+  }
   EXPECT_EQ(count, (std::vector<float>{3.0f, 3.0f, 0.0f, 7.0f}));
   z.p_occupied[1] = 0.3f;
-  CountHitScans(z, count);
+  EXPECT_EQ(CountHitScans(z, count), (std::vector<std::size_t>{0}));
   EXPECT_EQ(count, (std::vector<float>{4.0f, 0.0f, 0.0f, 7.0f}));
 }
 
