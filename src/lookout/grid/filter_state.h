@@ -69,10 +69,9 @@ class WindowIndexer {
   // Precondition: 0 <= local_y < height().
   std::size_t RowStorage(int local_y) const { return row_base_[static_cast<std::size_t>(local_y)]; }
   // The window-local cell stored at `storage`, the inverse of Storage: one 32-bit division and
-  // two table reads. Why: the loops over a scan's touched cells (some 23,000 a cycle on the
-  // junction) spent 14 ns a cell in ScrollingGridGeometry's
-  // LocalFromGlobal(GlobalFromStorage(.)), four divisions. Precondition: storage < width() *
-  // height().
+  // two table reads, where ScrollingGridGeometry's LocalFromGlobal(GlobalFromStorage(.)) takes
+  // four divisions, two of them 64-bit (for the loops that turn many storage indices into
+  // cells: the sources, the clusters' cells). Precondition: storage < width() * height().
   CellIndex Local(std::size_t storage) const {
     const auto s = static_cast<std::uint32_t>(storage);
     const std::uint32_t row = s / static_cast<std::uint32_t>(width_);
