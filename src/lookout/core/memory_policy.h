@@ -7,9 +7,9 @@
 // above its mmap threshold (128 kB, raised only when such a block is freed) back to the kernel
 // on free, and trims the heap's top above twice that; the next cycle then page-faults every
 // page back in, zeroed by the kernel. On the simulator's junction that was 611 page faults in
-// each grid update, a third of its time on this project's virtual machine
-// (docs/PERFORMANCE.md, "Memory given back every cycle"). Keeping freed memory costs the
-// program's high-water mark, which a pipeline reaches in its first cycles anyway.
+// each grid update, a third of its time on this project's virtual machine (docs/PERFORMANCE.md,
+// "Serial passes, load balance, page faults"). Keeping freed memory costs the program's
+// high-water mark, which a pipeline reaches in its first cycles anyway.
 
 namespace lookout {
 

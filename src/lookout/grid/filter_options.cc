@@ -25,10 +25,11 @@ void FilterOptions::Validate(const std::string& source) const {
           "must be > 0 (infinity: no decay)");
   Require(known_confidence >= 0.0 && known_confidence <= 1.0, source, "known_confidence",
           "must be in [0, 1]");
-  Require(window_size_cells >= 1 && window_size_cells % 2 == 1 && window_size_cells <= 31,
+  Require(window_size_cells >= 1 && window_size_cells % 2 == 1 &&
+              window_size_cells <= kMaxWindowSideCells,
           source, "window_size_cells", "must be odd and in [1, 31]");
   Require(new_window_size_cells >= 1 && new_window_size_cells % 2 == 1 &&
-              new_window_size_cells <= 31,
+              new_window_size_cells <= kMaxWindowSideCells,
           source, "new_window_size_cells", "must be odd and in [1, 31]");
   Require(new_window_stride_cells >= 1 && new_window_stride_cells <= 4, source,
           "new_window_stride_cells", "must be in [1, 4]");

@@ -18,6 +18,10 @@ enum class GridClass { kStatic = 0, kPedestrian, kCyclist, kVehicle, kUnknown };
 inline constexpr int kGridClassCount = 5;
 using ClassPmf = std::array<float, kGridClassCount>;
 
+// The widest search window, in samples a side (window_size_cells, new_window_size_cells):
+// the per-window scratch arrays of the stages are this long.
+inline constexpr int kMaxWindowSideCells = 31;
+
 struct FilterOptions {
   // --- step 2, association prediction (eq. 8-9)
   // Cells whose occupancy is at least this are moved ("worth moving"); the others stay in place.

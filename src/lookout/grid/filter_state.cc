@@ -72,12 +72,11 @@ void ComputePsi(const SearchWindow& w, float* psi, float* stay_share) {
   // The isotropic Gaussian is a product of two 1-D Gaussians over the window's columns and rows:
   // 2 n exponentials instead of n^2 (per component), and the sum over the lattice is the product
   // of the two 1-D sums. The dense core's few entries are summed directly.
-  constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
   const int n = w.size();
-  assert(n <= kMaxSide);
-  std::array<double, kMaxSide> gx{}, gy{}, sx{}, sy{};
-  const auto gaussians = [&](double sigma, std::array<double, kMaxSide>& x,
-                             std::array<double, kMaxSide>& y) {
+  assert(n <= kMaxWindowSideCells);
+  std::array<double, kMaxWindowSideCells> gx{}, gy{}, sx{}, sy{};
+  const auto gaussians = [&](double sigma, std::array<double, kMaxWindowSideCells>& x,
+                             std::array<double, kMaxWindowSideCells>& y) {
     const double inv_two_var = 1.0 / (2.0 * sigma * sigma);
     double sum_x = 0.0, sum_y = 0.0;
     for (int u = 0; u < n; ++u) {
@@ -141,8 +140,8 @@ TargetIndex BuildTargetIndex(const Associations& associations, FilterWorkspace& 
   // order of first appearance and the order within a target are therefore fixed. The first pass
   // files each entry's slot, so the second reads no cell map; raw pointers, so the compiler
   // need not reload one array after each store to another (with the branch-free first pass
-  // below: 0.39 -> 0.13 ms for the junction's 50,600 entries, docs/PERFORMANCE.md, "The
-  // serial stages").
+  // below: 0.39 -> 0.13 ms for the junction's 50,600 entries, docs/PERFORMANCE.md,
+  // "Serial passes, load balance, page faults").
   TargetIndex index;
   constexpr std::uint32_t kNone = FilterWorkspace::kNone;
   const std::size_t entries = associations.EntryCount();

@@ -81,27 +81,23 @@ std::vector<std::uint8_t> DynamicCellMask(const GridLayers& layers, const Filter
   const double min_confidence = options.min_velocity_confidence;
   std::vector<std::uint8_t> dynamic(occupancy.size(), 0);
   // Most cells are empty: their occupancy alone rules them out, and the velocity layers are read
-  // only where it does not (the pass is bound by memory traffic: one layer, not four). Blocks
-  // of cells are ruled out first by a float test that vectorises and lets through every cell
-  // the exact test below may keep (its threshold a float under min_occupancy): a branch per
-  // cell cost more than the memory.
+  // only where it does not (the pass is bound by memory traffic: one layer, not four). The
+  // cells are ruled out first by a float test (ForEachWhere's, which vectorises) that lets
+  // through every cell the exact test below may keep: its threshold a float under
+  // min_occupancy.
   const float below_min =
       std::nextafter(static_cast<float>(min_occupancy), -std::numeric_limits<float>::infinity());
   const float* const o = occupancy.data();
-  constexpr std::size_t kBlock = 64;
-  for (std::size_t begin = 0; begin < occupancy.size(); begin += kBlock) {
-    const std::size_t end = std::min(begin + kBlock, occupancy.size());
-    int candidates = 0;
-    for (std::size_t i = begin; i < end; ++i) candidates += o[i] > below_min ? 1 : 0;
-    if (candidates == 0) continue;
-    for (std::size_t i = begin; i < end; ++i) {
-      // Comparisons written so that NaN (which the filter never writes) is never dynamic.
-      if (!(At(occupancy, i) > min_occupancy)) continue;
-      const bool confident = At(confidence, i) >= min_confidence;
-      const double speed2 = At(vx, i) * At(vx, i) + At(vy, i) * At(vy, i);
-      dynamic[i] = confident && speed2 > min_speed2 ? 1 : 0;
-    }
-  }
+  ForEachWhere(
+      occupancy.size(), [&](std::size_t i) { return o[i] > below_min; },
+      // By value: the mask's bytes may alias anything a reference would reach.
+      [=, &dynamic](std::size_t i) {
+        // Comparisons written so that NaN (which the filter never writes) is never dynamic.
+        if (!(At(occupancy, i) > min_occupancy)) return;
+        const bool confident = At(confidence, i) >= min_confidence;
+        const double speed2 = At(vx, i) * At(vx, i) + At(vy, i) * At(vy, i);
+        dynamic[i] = confident && speed2 > min_speed2 ? 1 : 0;
+      });
   return dynamic;
 }
 

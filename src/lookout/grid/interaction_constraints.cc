@@ -58,9 +58,8 @@ double KernelAt(const std::vector<double>& k, int delta) {
 // (FilterOptions::rigidity_exact_across_lattices).
 double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d,
               const std::vector<double>& kernel) {
-  constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
   const int n = w.size();
-  std::array<double, kMaxSide> kx{}, ky{};
+  std::array<double, kMaxWindowSideCells> kx{}, ky{};
   for (int u = 0; u < n; ++u) {
     const int offset = w.stride * (u - w.half);
     kx[static_cast<std::size_t>(u)] = KernelAt(kernel, d.ix - (w.center.ix + offset));
@@ -123,7 +122,8 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
     // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table per window shape (a fine
     // and a coarse one), built once before the loop, so both passes are plain dot products.
     // (Rebuilt inside the loop at each change of shape, they cost 78 tables of 49-169
-    // exponentials a cycle on the junction: docs/PERFORMANCE.md, "The constraints' exponentials".)
+    // exponentials a cycle on the junction: docs/PERFORMANCE.md, "Serial passes, load balance, page
+    // faults".)
     struct KernelTable {
       std::size_t n;
       int stride;
@@ -181,7 +181,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
         if (w.HasDenseCore()) {
           // The dense core: its entries blurred onto the lattice, and the whole window (lattice
           // and core) blurred onto each core entry, directly (a few entries).
-          std::array<double, 31> kx{}, ky{};
+          std::array<double, kMaxWindowSideCells> kx{}, ky{};
           w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
             const double pq = static_cast<double>(p[q]);
             if (pq == 0.0) return;
@@ -242,12 +242,11 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
       }
       // A link through its moments: the Gaussian r^2 / var exp(-|d - mean|^2 / (2 var)) over
       // this window's lattice as a column factor times a row factor, 2n exponentials where one
-      // per entry took 26,000 a cycle on the junction (docs/PERFORMANCE.md, "The constraints'
-      // exponentials"); the dense core's few entries take theirs whole.
-      constexpr int kMaxSide = 31;  // the largest window FilterOptions::Validate allows
+      // per entry took 26,000 a cycle on the junction (docs/PERFORMANCE.md, "Serial passes,
+      // load balance, page faults"); the dense core's few entries take theirs whole.
       struct Separable {
         double scale;
-        std::array<double, kMaxSide> column, row;
+        std::array<double, kMaxWindowSideCells> column, row;
       };
       std::array<Separable, kNeighbourCount> separable;
       const int side = w.size();

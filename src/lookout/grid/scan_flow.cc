@@ -115,21 +115,13 @@ void LayNow(const MeasurementGrid& z, HitMaps& maps) {
   // A row's storage run holds its local cells in two pieces: storage columns [split, width) are
   // local x [0, width - split), columns [0, split) local x [width - split, width).
   const auto split = static_cast<int>(indexer.Storage(0, 0) - indexer.RowStorage(0));
-  constexpr int kBlock = 64;  // a few hundred hits in 160,000 cells: blocks without one skipped
   const auto lay_piece = [&](const float* p, int n, int x0, int y) {
     std::uint8_t* free = &maps.free_now[maps.At(x0, y)];
-    for (int begin = 0; begin < n; begin += kBlock) {
-      const int end = std::min(begin + kBlock, n);
-      int hits = 0;
-      for (int i = begin; i < end; ++i) {
-        free[i] = p[i] < 0.5f ? 1 : 0;
-        hits += p[i] > 0.5f ? 1 : 0;
-      }
-      if (hits == 0) continue;
-      for (int i = begin; i < end; ++i) {
-        if (p[i] > 0.5f) maps.AddNow(x0 + i, y);
-      }
-    }
+    for (int i = 0; i < n; ++i) free[i] = p[i] < 0.5f ? 1 : 0;
+    // A few hundred hits in 160,000 cells.
+    ForEachWhere(
+        static_cast<std::size_t>(n), [&](std::size_t i) { return p[i] > 0.5f; },
+        [&](std::size_t i) { maps.AddNow(x0 + static_cast<int>(i), y); });
   };
   for (int y = 0; y < indexer.height(); ++y) {
     const float* row = &z.p_occupied[indexer.RowStorage(y)];
