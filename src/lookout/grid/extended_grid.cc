@@ -1,5 +1,7 @@
 #include "lookout/grid/extended_grid.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <array>
 #include <cassert>
 #include <chrono>
@@ -43,9 +45,18 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
       PredictAssociations(layers_, ids_, indexer, z, dt_s, options_, &flow_);              // 2
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
-  const TargetIndex targets = BuildTargetIndex(associations, workspace_);
-  ApplyConstraints(indexer, targets, workspace_, options_, associations);                  // 4
-  const std::vector<UpdateCell> cells = BuildUpdateList(targets, associations, z, workspace_);
+  // The target index and the update list are serial passes; the rigidity blur reads only Pw.
+  // One thread builds the first two while the blur's blocks go to whichever thread is free.
+  TargetIndex targets;
+  std::vector<UpdateCell> cells;
+  RigidityBlur blur;
+  tbb::parallel_invoke(
+      [&] {
+        targets = BuildTargetIndex(associations, workspace_);
+        cells = BuildUpdateList(targets, associations, z, workspace_);
+      },
+      [&] { blur = BlurForRigidity(associations, options_); });
+  ApplyConstraints(indexer, targets, workspace_, options_, blur, associations);  // 4
 
   UpdateOccupancy(associations, targets, cells, z, options_, layers_.Values(ids_.occupancy),
                   layers_.Values(ids_.seen));                                              // 5

@@ -9,12 +9,6 @@
 namespace lookout::grid {
 namespace {
 
-struct DisplacementMoments {
-  double mean_x_cells = 0.0;
-  double mean_y_cells = 0.0;
-  double variance_cells2 = 0.0;  // per axis
-};
-
 DisplacementMoments MomentsOf(const Associations& a, std::size_t s) {
   const SearchWindow& w = a.window[s];
   const std::size_t first = a.first_entry[s];
@@ -85,9 +79,113 @@ double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d,
 
 }  // namespace
 
+RigidityBlur BlurForRigidity(const Associations& a, const FilterOptions& options) {
+  // Each source's Pw blurred by the rigidity kernel on its own window lattice:
+  // B_y(a) = sum_a' Pw(y moves by a') K(a - a'), separable (K is a product of two 1-D Gaussians),
+  // O(M^3) per source. A linked neighbour whose window has the same lattice as the cell's enters
+  // through B_y exactly; otherwise through its two moments (a Gaussian in place of its pmf), or,
+  // with rigidity_exact_across_lattices, through B_y where the cell's displacement is one of y's
+  // samples and BlurAt where it is not.
+  RigidityBlur result;
+  if (!options.enable_rigidity_constraint) return result;
+  const bool exact = options.rigidity_exact_across_lattices;
+  if (!exact) result.moments.resize(a.SourceCount());
+  result.blurred.resize(a.EntryCount());
+  const double r2 = options.rigidity_sigma_cells * options.rigidity_sigma_cells;
+  // Offsets between two samples of windows up to 31 wide, stride 4, centred up to 64 cells apart.
+  result.integer_kernel = IntegerKernel(r2, 4 * 64 + 4 * 31);
+  const std::vector<double>& integer_kernel = result.integer_kernel;
+  std::vector<DisplacementMoments>& moments = result.moments;
+  std::vector<float>& blurred = result.blurred;
+  // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table per window shape (a fine
+  // and a coarse one), built once before the loop, so both passes are plain dot products.
+  // (Rebuilt inside the loop at each change of shape, they cost 78 tables of 49-169
+  // exponentials a cycle on the junction: docs/PERFORMANCE.md, "Serial passes, load balance, page
+  // faults".)
+  struct KernelTable {
+    std::size_t n;
+    int stride;
+    std::vector<double> k;
+  };
+  std::vector<KernelTable> tables;
+  for (const SearchWindow& w : a.window) {
+    const auto n = static_cast<std::size_t>(w.size());
+    const bool known = std::any_of(tables.begin(), tables.end(), [&](const KernelTable& t) {
+      return t.n == n && t.stride == w.stride;
+    });
+    if (known) continue;
+    KernelTable& table = tables.emplace_back(KernelTable{n, w.stride, std::vector<double>(n * n)});
+    for (std::size_t u = 0; u < n; ++u) {
+      for (std::size_t u2 = 0; u2 < n; ++u2) {
+        const double dist =
+            static_cast<double>(w.stride) * (static_cast<double>(u) - static_cast<double>(u2));
+        table.k[u * n + u2] = std::exp(-dist * dist / (2.0 * r2));
+      }
+    }
+  }
+  ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
+    std::vector<double> rows, column;
+    for (std::size_t s = begin; s < end; ++s) {
+      if (!exact) moments[s] = MomentsOf(a, s);
+      const SearchWindow& w = a.window[s];
+      const auto n = static_cast<std::size_t>(w.size());
+      const std::vector<double>& kernel =
+          std::find_if(tables.begin(), tables.end(), [&](const KernelTable& t) {
+            return t.n == n && t.stride == w.stride;
+          })->k;
+      const float* p = &a.weight[a.first_entry[s]];
+      rows.assign(n * n, 0.0);
+      // Both passes accumulate whole rows (the inner loops have no reduction and vectorise);
+      // K is symmetric.
+      for (std::size_t v = 0; v < n; ++v) {  // along u: rows(v, u) = sum_u2 P(v, u2) K(u2, u)
+        double* row = &rows[v * n];
+        for (std::size_t u2 = 0; u2 < n; ++u2) {
+          const double pv = static_cast<double>(p[v * n + u2]);
+          const double* k = &kernel[u2 * n];
+          for (std::size_t u = 0; u < n; ++u) row[u] += pv * k[u];
+        }
+      }
+      column.assign(n, 0.0);
+      float* out = &blurred[a.first_entry[s]];
+      for (std::size_t v = 0; v < n; ++v) {  // along v: B(v, u) = sum_v2 K(v, v2) rows(v2, u)
+        std::fill(column.begin(), column.end(), 0.0);
+        for (std::size_t v2 = 0; v2 < n; ++v2) {
+          const double k = kernel[v * n + v2];
+          for (std::size_t u = 0; u < n; ++u) column[u] += k * rows[v2 * n + u];
+        }
+        for (std::size_t u = 0; u < n; ++u) out[v * n + u] = static_cast<float>(column[u]);
+      }
+      if (w.HasDenseCore()) {
+        // The dense core: its entries blurred onto the lattice, and the whole window (lattice
+        // and core) blurred onto each core entry, directly (a few entries).
+        std::array<double, kMaxWindowSideCells> kx{}, ky{};
+        w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
+          const double pq = static_cast<double>(p[q]);
+          if (pq == 0.0) return;
+          for (std::size_t u = 0; u < n; ++u) {
+            const int lu = w.stride * (static_cast<int>(u) - w.half);
+            kx[u] = KernelAt(integer_kernel, lu - o.ix);
+            ky[u] = KernelAt(integer_kernel, lu - o.iy);
+          }
+          for (std::size_t v = 0; v < n; ++v) {
+            for (std::size_t u = 0; u < n; ++u) {
+              out[v * n + u] += static_cast<float>(pq * ky[v] * kx[u]);
+            }
+          }
+        });
+        w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
+          out[q] = static_cast<float>(
+              BlurAt(w, p, CellIndex{w.center.ix + o.ix, w.center.iy + o.iy}, integer_kernel));
+        });
+      }
+    }
+  });
+  return result;
+}
+
 void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
                       const FilterWorkspace& workspace, const FilterOptions& options,
-                      Associations& a) {
+                      const RigidityBlur& blur, Associations& a) {
   // In(i) per entry's target, gathered per target (each entry belongs to one target).
   std::vector<float> inflow_at_entry(a.EntryCount(), 0.0f);
   if (options.enable_no_convergence_constraint) {
@@ -106,105 +204,9 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
     });
   }
 
-  // Each source's Pw blurred by the rigidity kernel on its own window lattice:
-  // B_y(a) = sum_a' Pw(y moves by a') K(a - a'), separable (K is a product of two 1-D Gaussians),
-  // O(M^3) per source. A linked neighbour whose window has the same lattice as the cell's enters
-  // through B_y exactly; otherwise through its two moments (a Gaussian in place of its pmf), or,
-  // with rigidity_exact_across_lattices, through B_y where the cell's displacement is one of y's
-  // samples and BlurAt where it is not.
-  std::vector<DisplacementMoments> moments(a.SourceCount());
   const bool exact = options.rigidity_exact_across_lattices;
-  std::vector<float> blurred(options.enable_rigidity_constraint ? a.EntryCount() : 0);
   const double r2 = options.rigidity_sigma_cells * options.rigidity_sigma_cells;
-  // Offsets between two samples of windows up to 31 wide, stride 4, centred up to 64 cells apart.
-  const std::vector<double> integer_kernel = IntegerKernel(r2, 4 * 64 + 4 * 31);
-  if (options.enable_rigidity_constraint) {
-    // K(u, u2) = exp(-(stride (u - u2))^2 / (2 r^2)) as an n x n table per window shape (a fine
-    // and a coarse one), built once before the loop, so both passes are plain dot products.
-    // (Rebuilt inside the loop at each change of shape, they cost 78 tables of 49-169
-    // exponentials a cycle on the junction: docs/PERFORMANCE.md, "Serial passes, load balance, page
-    // faults".)
-    struct KernelTable {
-      std::size_t n;
-      int stride;
-      std::vector<double> k;
-    };
-    std::vector<KernelTable> tables;
-    for (const SearchWindow& w : a.window) {
-      const auto n = static_cast<std::size_t>(w.size());
-      const bool known = std::any_of(tables.begin(), tables.end(), [&](const KernelTable& t) {
-        return t.n == n && t.stride == w.stride;
-      });
-      if (known) continue;
-      KernelTable& table =
-          tables.emplace_back(KernelTable{n, w.stride, std::vector<double>(n * n)});
-      for (std::size_t u = 0; u < n; ++u) {
-        for (std::size_t u2 = 0; u2 < n; ++u2) {
-          const double dist =
-              static_cast<double>(w.stride) * (static_cast<double>(u) - static_cast<double>(u2));
-          table.k[u * n + u2] = std::exp(-dist * dist / (2.0 * r2));
-        }
-      }
-    }
-    ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
-      std::vector<double> rows, column;
-      for (std::size_t s = begin; s < end; ++s) {
-        if (!exact) moments[s] = MomentsOf(a, s);
-        const SearchWindow& w = a.window[s];
-        const auto n = static_cast<std::size_t>(w.size());
-        const std::vector<double>& kernel =
-            std::find_if(tables.begin(), tables.end(), [&](const KernelTable& t) {
-              return t.n == n && t.stride == w.stride;
-            })->k;
-        const float* p = &a.weight[a.first_entry[s]];
-        rows.assign(n * n, 0.0);
-        // Both passes accumulate whole rows (the inner loops have no reduction and vectorise);
-        // K is symmetric.
-        for (std::size_t v = 0; v < n; ++v) {  // along u: rows(v, u) = sum_u2 P(v, u2) K(u2, u)
-          double* row = &rows[v * n];
-          for (std::size_t u2 = 0; u2 < n; ++u2) {
-            const double pv = static_cast<double>(p[v * n + u2]);
-            const double* k = &kernel[u2 * n];
-            for (std::size_t u = 0; u < n; ++u) row[u] += pv * k[u];
-          }
-        }
-        column.assign(n, 0.0);
-        float* out = &blurred[a.first_entry[s]];
-        for (std::size_t v = 0; v < n; ++v) {  // along v: B(v, u) = sum_v2 K(v, v2) rows(v2, u)
-          std::fill(column.begin(), column.end(), 0.0);
-          for (std::size_t v2 = 0; v2 < n; ++v2) {
-            const double k = kernel[v * n + v2];
-            for (std::size_t u = 0; u < n; ++u) column[u] += k * rows[v2 * n + u];
-          }
-          for (std::size_t u = 0; u < n; ++u) out[v * n + u] = static_cast<float>(column[u]);
-        }
-        if (w.HasDenseCore()) {
-          // The dense core: its entries blurred onto the lattice, and the whole window (lattice
-          // and core) blurred onto each core entry, directly (a few entries).
-          std::array<double, kMaxWindowSideCells> kx{}, ky{};
-          w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
-            const double pq = static_cast<double>(p[q]);
-            if (pq == 0.0) return;
-            for (std::size_t u = 0; u < n; ++u) {
-              const int lu = w.stride * (static_cast<int>(u) - w.half);
-              kx[u] = KernelAt(integer_kernel, lu - o.ix);
-              ky[u] = KernelAt(integer_kernel, lu - o.iy);
-            }
-            for (std::size_t v = 0; v < n; ++v) {
-              for (std::size_t u = 0; u < n; ++u) {
-                out[v * n + u] += static_cast<float>(pq * ky[v] * kx[u]);
-              }
-            }
-          });
-          w.ForEachDenseOffset([&](std::size_t q, const CellIndex& o) {
-            out[q] = static_cast<float>(
-                BlurAt(w, p, CellIndex{w.center.ix + o.ix, w.center.iy + o.iy}, integer_kernel));
-          });
-        }
-      }
-    });
-  }
-
+  const std::vector<double>& integer_kernel = blur.integer_kernel;
   const double inv_two_nc_var =
       1.0 / (2.0 * options.no_convergence_sigma * options.no_convergence_sigma);
   std::vector<float> constrained(a.EntryCount());
@@ -236,8 +238,12 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           if (y == FilterWorkspace::kNone) continue;
           const SearchWindow& wy = a.window[y];
           const bool same_lattice = wy.SameEntries(w);
-          links[link_count++] = Link{strength, &wy, &a.weight[a.first_entry[y]],
-                                     &blurred[a.first_entry[y]], &moments[y], same_lattice};
+          links[link_count++] = Link{strength,
+                                     &wy,
+                                     &a.weight[a.first_entry[y]],
+                                     &blur.blurred[a.first_entry[y]],
+                                     exact ? nullptr : &blur.moments[y],
+                                     same_lattice};
         }
       }
       // A link through its moments: the Gaussian r^2 / var exp(-|d - mean|^2 / (2 var)) over

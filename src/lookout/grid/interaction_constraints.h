@@ -26,15 +26,39 @@
 // test bounds the difference (which comes from the second case only).
 // Both constraints read Pw of the previous stage only (one Jacobi-like pass, order-free).
 
+#include <vector>
+
 #include "lookout/grid/filter_options.h"
 #include "lookout/grid/filter_state.h"
 
 namespace lookout::grid {
 
+// The mean and per-axis variance of a source's displacement pmf, in cells.
+struct DisplacementMoments {
+  double mean_x_cells = 0.0;
+  double mean_y_cells = 0.0;
+  double variance_cells2 = 0.0;  // per axis
+};
+
+// What the rigidity term reads of each linked neighbour y: B_y over y's window (EntryCount()
+// floats, laid out as associations.weight) and, unless rigidity_exact_across_lattices, y's
+// moments. Empty when the rigidity constraint is off.
+struct RigidityBlur {
+  std::vector<float> blurred;
+  std::vector<DisplacementMoments> moments;
+  std::vector<double> integer_kernel;  // K's 1-D factor at whole-cell offsets 0, 1, ...
+};
+
+// B_y and the moments of every source, from Pw (the weights after step 3). Why apart from
+// ApplyConstraints: it reads neither the target index nor the workspace, so the update runs it
+// beside the serial passes that build them. Parallel over sources; deterministic.
+RigidityBlur BlurForRigidity(const Associations& associations, const FilterOptions& options);
+
 // Replaces associations.weight (Pw) by P of eq. 11. `workspace.source_of_cell` must map the
-// sources (MapSources). Parallel over targets, then over sources; deterministic.
+// sources (MapSources); `blur` is BlurForRigidity of the same Pw. Parallel over targets, then
+// over sources; deterministic.
 void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
                       const FilterWorkspace& workspace, const FilterOptions& options,
-                      Associations& associations);
+                      const RigidityBlur& blur, Associations& associations);
 
 }  // namespace lookout::grid
