@@ -220,6 +220,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
       bool same_lattice;                   // y's window has the cell's lattice
     };
     std::array<Link, kNeighbourCount> links;
+    std::vector<double> factor;  // the window's P(j -> i) as its factors are applied
     for (std::size_t s = begin; s < end; ++s) {
       const SearchWindow& w = a.window[s];
       const std::size_t first = a.first_entry[s];
@@ -270,51 +271,62 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
           g.row[static_cast<std::size_t>(u)] = std::exp(-ey * ey / (2.0 * var));
         }
       }
-      double sum = 0.0;
-      // Entry k, displacement d, at lattice column u and row v (u < 0: the dense core).
-      const auto constrain = [&](std::size_t k, const CellIndex& d, int u, int v) {
-        const std::size_t e = first + k;
-        double p = static_cast<double>(a.weight[e]);
-        if (options.enable_no_convergence_constraint && a.target[e] != kOutsideWindow) {
-          const double others = static_cast<double>(inflow_at_entry[e]) - p * o_j;
+      // Factor by factor over the whole window, each pass a loop without a branch (the links'
+      // kinds tested once a link, not once an entry: the pass vectorises). Each entry takes its
+      // factors in the same order as the product of eq. 11 for it alone, so the values are the
+      // same. Entry k in ForEachDisplacement's order: the lattice row by row, then the dense core.
+      const std::size_t count = w.EntryCount();
+      factor.resize(count);
+      double* p = factor.data();
+      for (std::size_t k = 0; k < count; ++k) p[k] = static_cast<double>(a.weight[first + k]);
+      if (options.enable_no_convergence_constraint) {
+        for (std::size_t k = 0; k < count; ++k) {
+          const std::size_t e = first + k;
+          if (a.target[e] == kOutsideWindow) continue;
+          const double others = static_cast<double>(inflow_at_entry[e]) - p[k] * o_j;
           const double excess = others + o_j - 1.0;
-          if (excess > 0.0) p *= std::exp(-excess * excess * inv_two_nc_var);
-        }
-        for (std::size_t l = 0; l < link_count; ++l) {
-          const Link& link = links[l];
-          double agree = 0.0;
-          if (link.same_lattice) {
-            agree = static_cast<double>(link.blurred[k]);
-          } else if (exact) {
-            const std::int64_t ky = link.window->EntryOf(d);
-            agree = ky >= 0 ? static_cast<double>(link.blurred[static_cast<std::size_t>(ky)])
-                            : BlurAt(*link.window, link.weight, d, integer_kernel);
-          } else if (u >= 0) {
-            const Separable& g = separable[l];
-            agree = g.scale * g.column[static_cast<std::size_t>(u)] *
-                    g.row[static_cast<std::size_t>(v)];
-          } else {
-            const double var = r2 + link.moments->variance_cells2;
-            const double ex = d.ix - link.moments->mean_x_cells;
-            const double ey = d.iy - link.moments->mean_y_cells;
-            agree = r2 / var * std::exp(-(ex * ex + ey * ey) / (2.0 * var));
-          }
-          p *= (1.0 - link.strength) + link.strength * agree;
-        }
-        constrained[e] = static_cast<float>(p);
-        sum += p;
-      };
-      // ForEachDisplacement's order: the lattice row by row, then the dense core.
-      std::size_t entry = 0;
-      for (int v = 0; v < side; ++v) {
-        const int dy = w.center.iy + w.stride * (v - w.half);
-        for (int u = 0; u < side; ++u, ++entry) {
-          constrain(entry, CellIndex{w.center.ix + w.stride * (u - w.half), dy}, u, v);
+          if (excess > 0.0) p[k] *= std::exp(-excess * excess * inv_two_nc_var);
         }
       }
-      w.ForEachDenseOffset([&](std::size_t j, const CellIndex& o) {
-        constrain(j, CellIndex{w.center.ix + o.ix, w.center.iy + o.iy}, -1, -1);
-      });
+      for (std::size_t l = 0; l < link_count; ++l) {
+        const Link& link = links[l];
+        const double keep = 1.0 - link.strength;
+        const double strength = link.strength;
+        if (link.same_lattice) {
+          for (std::size_t k = 0; k < count; ++k) {
+            p[k] *= keep + strength * static_cast<double>(link.blurred[k]);
+          }
+        } else if (exact) {
+          w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
+            const std::int64_t ky = link.window->EntryOf(d);
+            const double agree =
+                ky >= 0 ? static_cast<double>(link.blurred[static_cast<std::size_t>(ky)])
+                        : BlurAt(*link.window, link.weight, d, integer_kernel);
+            p[k] *= keep + strength * agree;
+          });
+        } else {
+          const Separable& g = separable[l];
+          const auto n = static_cast<std::size_t>(side);
+          for (std::size_t v = 0; v < n; ++v) {
+            double* row = p + v * n;
+            const double gy = g.row[v];
+            for (std::size_t u = 0; u < n; ++u) {
+              row[u] *= keep + strength * (g.scale * g.column[u] * gy);
+            }
+          }
+          w.ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {
+            const double var = r2 + link.moments->variance_cells2;
+            const double ex = w.center.ix + o.ix - link.moments->mean_x_cells;
+            const double ey = w.center.iy + o.iy - link.moments->mean_y_cells;
+            p[k] *= keep + strength * (r2 / var * std::exp(-(ex * ex + ey * ey) / (2.0 * var)));
+          });
+        }
+      }
+      double sum = 0.0;
+      for (std::size_t k = 0; k < count; ++k) {
+        constrained[first + k] = static_cast<float>(p[k]);
+        sum += p[k];
+      }
       if (sum <= 0.0) {  // every move forbidden (underflow): keep Pw
         for (std::size_t k = 0; k < w.EntryCount(); ++k) {
           constrained[first + k] = a.weight[first + k];
