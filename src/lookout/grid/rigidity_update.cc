@@ -5,21 +5,29 @@ namespace lookout::grid {
 std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndexer& indexer,
                                         const FilterWorkspace& workspace) {
   std::vector<float> links(a.SourceCount() * kNeighbourCount, 0.0f);
+  // The source y linked to x in direction d, or kNone.
+  const auto neighbour = [&](std::size_t x, std::size_t d) {
+    const int nx = a.source_local[x].ix + kNeighbourOffsets[d].ix;
+    const int ny = a.source_local[x].iy + kNeighbourOffsets[d].iy;
+    if (!indexer.Inside(nx, ny)) return FilterWorkspace::kNone;
+    return workspace.source_of_cell[indexer.Storage(nx, ny)];
+  };
+  constexpr std::size_t kHalf = kNeighbourCount / 2;  // d and d + kHalf are opposite
   ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t x = begin; x < end; ++x) {
       const SearchWindow& wx = a.window[x];
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-        const int nx = a.source_local[x].ix + kNeighbourOffsets[d].ix;
-        const int ny = a.source_local[x].iy + kNeighbourOffsets[d].iy;
-        if (!indexer.Inside(nx, ny)) continue;
-        const std::uint32_t y = workspace.source_of_cell[indexer.Storage(nx, ny)];
+        const std::uint32_t y = neighbour(x, d);
         if (y == FilterWorkspace::kNone) continue;
         const SearchWindow& wy = a.window[y];
         double overlap = 0.0;
         const float* px = &a.weight[a.first_entry[x]];
         const float* py = &a.weight[a.first_entry[y]];
         if (wy.SameEntries(wx)) {
-          // One lattice (most neighbours of one body): entry k is the same displacement in both.
+          // One lattice (most neighbours of one body): entry k is the same displacement in both,
+          // and the sum is symmetric term by term: y's link back to x, the same value, is
+          // copied below rather than summed again.
+          if (d >= kHalf) continue;
           for (std::size_t k = 0; k < wx.EntryCount(); ++k) {
             overlap += static_cast<double>(px[k]) * static_cast<double>(py[k]);
           }
@@ -33,6 +41,15 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
                      static_cast<double>(py[static_cast<std::size_t>(ky)]);
         });
         links[x * kNeighbourCount + d] = static_cast<float>(overlap);
+      }
+    }
+  });
+  ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t x = begin; x < end; ++x) {
+      for (std::size_t d = kHalf; d < kNeighbourCount; ++d) {
+        const std::uint32_t y = neighbour(x, d);
+        if (y == FilterWorkspace::kNone || !a.window[y].SameEntries(a.window[x])) continue;
+        links[x * kNeighbourCount + d] = links[y * kNeighbourCount + (d - kHalf)];
       }
     }
   });
