@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <array>
@@ -135,8 +136,9 @@ void LayNow(const MeasurementGrid& z, HitMaps& maps) {
 void ScanFlowOptions::Validate(const std::string& source) const {
   Require(search_half_cells >= 0 && search_half_cells <= 32, source, "search_half_cells",
           "must be in [0, 32]");
-  Require(patch_half_cells >= 0 && patch_half_cells <= 8, source, "patch_half_cells",
-          "must be in [0, 8]");
+  Require(patch_half_cells >= 0 && patch_half_cells <= kMaxPatchHalfCells, source,
+          "patch_half_cells", "must be in [0, 8]");
+  static_assert(kMaxPatchHalfCells == 8, "the message above");
   Require(min_patch_hits >= 1, source, "min_patch_hits", "must be >= 1");
   Require(InUnit(stay_share), source, "stay_share", "must be in [0, 1]");
   Require(InUnit(min_matched_share), source, "min_matched_share", "must be in [0, 1]");
@@ -188,54 +190,111 @@ void HitMaps::AddNow(int ix, int iy) {
   }
 }
 
+namespace {
+
+// Adds `sign` times the scores one previous hit at (x, y) gives every displacement of the search
+// square (side^2 ints, row-major). Hit by hit and row by row: the dilated map's cells under one
+// hit's displacements along dx are contiguous, so a row of scores takes a row of the map in one
+// vectorised sum (a gather per hit and displacement before: docs/PERFORMANCE.md, "The scan
+// pair's patch scores"). A displacement that takes the hit out of the window scores
+// OutsideScore.
+void AddHitScores(const HitMaps& maps, int x, int y, int half, int sign, int* scores) {
+  const int side = 2 * half + 1;
+  const int x0 = x - half;
+  const bool row_inside = x0 >= 0 && x + half < maps.width;
+  for (int dy = -half; dy <= half; ++dy) {
+    const int row_y = y + dy;
+    int* row = &scores[static_cast<std::size_t>((dy + half) * side)];
+    if (row_inside && row_y >= 0 && row_y < maps.height) {
+      const std::uint8_t* now = &maps.now[maps.At(x0, row_y)];
+      if (sign > 0) {
+        for (int i = 0; i < side; ++i) row[i] += now[i];
+      } else {
+        for (int i = 0; i < side; ++i) row[i] -= now[i];
+      }
+      continue;
+    }
+    for (int i = 0; i < side; ++i) {
+      const int row_x = x0 + i;
+      row[i] += sign * (maps.Inside(row_x, row_y) ? maps.now[maps.At(row_x, row_y)]
+                                                  : OutsideScore(maps, row_x, row_y));
+    }
+  }
+}
+
+}  // namespace
+
 FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int search_half_cells,
                             const ScanFlowOptions& options) {
-  // The patch's previous hits as offsets, gathered once; each displacement then sums their
-  // lookups. A displacement that takes a hit out of the window scores 0 for it.
-  struct Hit {
-    int x, y;
+  PatchScoreCache cache;
+  return MeasureFlow(maps, cell, search_half_cells, options, cache);
+}
+
+FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int search_half_cells,
+                            const ScanFlowOptions& options, PatchScoreCache& cache) {
+  const int p = options.patch_half_cells;
+  const auto is_hit = [&](int x, int y) {
+    return maps.Inside(x, y) && maps.before[maps.At(x, y)] != 0;
   };
-  Hit hits[(2 * 8 + 1) * (2 * 8 + 1)];
   int n = 0;
   int vacated = 0;
-  const int p = options.patch_half_cells;
   for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
     for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
-      if (maps.Inside(x, y) && maps.before[maps.At(x, y)] != 0) {
-        hits[n++] = {x, y};
-        if (maps.free_now[maps.At(x, y)] != 0) ++vacated;
-      }
+      if (!is_hit(x, y)) continue;
+      ++n;
+      if (maps.free_now[maps.At(x, y)] != 0) ++vacated;
     }
   }
   const int half = search_half_cells;
   const auto no_scores = [](const CellIndex&) { return 0; };
   if (n < options.min_patch_hits) return Decide(n, vacated, half, no_scores, options);
-  // Scores of the whole search square, row-major, computed once (the decision reads some twice).
-  // Only the side^2 entries in use are touched: zeroing all 65^2 on every call cost more than a
-  // walker's search (the fill only lets the compiler see that each one read is written).
-  // Hit by hit and row by row: the dilated map's cells under one hit's displacements along dx
-  // are contiguous, so a row of scores takes a row of the map in one vectorised sum (a gather
-  // per hit and displacement before: docs/PERFORMANCE.md, "The scan pair's patch scores").
   const int side = 2 * half + 1;
-  std::array<int, (2 * 32 + 1) * (2 * 32 + 1)> scores;
-  std::fill_n(scores.begin(), side * side, 0);
-  for (int k = 0; k < n; ++k) {
-    const int x0 = hits[k].x - half;
-    const bool row_inside = x0 >= 0 && hits[k].x + half < maps.width;
-    for (int dy = -half; dy <= half; ++dy) {
-      const int y = hits[k].y + dy;
-      int* row = &scores[static_cast<std::size_t>((dy + half) * side)];
-      if (row_inside && y >= 0 && y < maps.height) {
-        const std::uint8_t* now = &maps.now[maps.At(x0, y)];
-        for (int i = 0; i < side; ++i) row[i] += now[i];
-        continue;
+  const auto area = static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
+  if (cache.scores.size() < area) cache.scores.resize(area);
+  int* scores = cache.scores.data();
+  // The cached patch's scores moved to this one: the hits of the cells in one patch and not in
+  // the other, added or taken away (integers: exactly the sums scored afresh). Taken where
+  // fewer than the patch's own hits.
+  const int dx = cell.ix - cache.cell.ix;
+  const int dy = cell.iy - cache.cell.iy;
+  bool moved = false;
+  if (cache.maps == &maps && cache.half == half && std::abs(dx) <= 2 * p && std::abs(dy) <= 2 * p) {
+    const auto in_patch = [&](const CellIndex& c, int x, int y) {
+      return std::abs(x - c.ix) <= p && std::abs(y - c.iy) <= p;
+    };
+    struct Change {
+      int x, y, sign;
+    };
+    std::array<Change, 2 * (2 * kMaxPatchHalfCells + 1) * (2 * kMaxPatchHalfCells + 1)> changes;
+    int count = 0;
+    for (int y = std::min(cell.iy, cache.cell.iy) - p; y <= std::max(cell.iy, cache.cell.iy) + p;
+         ++y) {
+      for (int x = std::min(cell.ix, cache.cell.ix) - p; x <= std::max(cell.ix, cache.cell.ix) + p;
+           ++x) {
+        const bool in_new = in_patch(cell, x, y);
+        if (in_new == in_patch(cache.cell, x, y) || !is_hit(x, y)) continue;
+        changes[static_cast<std::size_t>(count++)] = Change{x, y, in_new ? 1 : -1};
       }
-      for (int i = 0; i < side; ++i) {
-        const int x = x0 + i;
-        row[i] += maps.Inside(x, y) ? maps.now[maps.At(x, y)] : OutsideScore(maps, x, y);
+    }
+    if (count < n) {
+      for (int k = 0; k < count; ++k) {
+        const Change& c = changes[static_cast<std::size_t>(k)];
+        AddHitScores(maps, c.x, c.y, half, c.sign, scores);
+      }
+      moved = true;
+    }
+  }
+  if (!moved) {
+    std::fill_n(scores, area, 0);
+    for (int y = cell.iy - p; y <= cell.iy + p; ++y) {
+      for (int x = cell.ix - p; x <= cell.ix + p; ++x) {
+        if (is_hit(x, y)) AddHitScores(maps, x, y, half, 1, scores);
       }
     }
   }
+  cache.maps = &maps;
+  cache.cell = cell;
+  cache.half = half;
   return Decide(
       n, vacated, half,
       [&](const CellIndex& d) {
@@ -311,14 +370,22 @@ void ScanFlow::Prepare(const MeasurementGrid& z) {
 }
 
 FlowMeasurement ScanFlow::Measure(const CellIndex& cell) const {
+  PatchScoreCache short_cache, long_cache;
+  return Measure(cell, short_cache, long_cache);
+}
+
+FlowMeasurement ScanFlow::Measure(const CellIndex& cell, PatchScoreCache& short_cache,
+                                  PatchScoreCache& long_cache) const {
   if (!has_pair_) return {};
-  const FlowMeasurement one = MeasureFlow(maps_, cell, options_.search_half_cells, options_);
+  const FlowMeasurement one =
+      MeasureFlow(maps_, cell, options_.search_half_cells, options_, short_cache);
   const bool short_move = one.kind != FlowKind::kMoves ||
                           std::max(std::abs(one.displacement.ix), std::abs(one.displacement.iy)) <
                               options_.long_lag_below_cells;
   if (!has_long_pair_ || !short_move) return one;
-  FlowMeasurement lag = MeasureFlow(
-      long_maps_, cell, options_.long_lag_below_cells * options_.long_lag_scans, options_);
+  FlowMeasurement lag =
+      MeasureFlow(long_maps_, cell, options_.long_lag_below_cells * options_.long_lag_scans,
+                  options_, long_cache);
   if (lag.kind == FlowKind::kUnknown) return one;
   lag.lag_scans = options_.long_lag_scans;
   lag.mean_x_cells = lag.displacement.ix * long_lag_scale_;
@@ -346,19 +413,24 @@ std::vector<FlowMeasurement> ScanFlow::MeasureCells(std::span<const CellIndex> c
                                                     std::span<const std::uint8_t> wanted) const {
   std::vector<FlowMeasurement> out(cells.size());
   if (!has_pair_) return out;
-  // The wanted cells, a tenth of the sources on the junction and in runs (a body newly seen),
-  // shared out one by one: a measurement costs some microseconds, and blocks of cells left one
-  // thread the runs.
+  // The wanted cells, a tenth of the sources on the junction and in runs along rows (a body
+  // newly seen): a few consecutive cells a task, each scored from the one before (PatchScoreCache);
+  // few enough that the runs are shared out (blocks of cells scored afresh left one thread the
+  // runs).
   std::vector<std::size_t> measured;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (wanted[i] != 0) measured.push_back(i);
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, measured.size(), 1),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t m = r.begin(); m != r.end(); ++m) {
-                        out[measured[m]] = Measure(cells[measured[m]]);
-                      }
-                    });
+  constexpr std::size_t kCellsPerTask = 8;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, measured.size(), kCellsPerTask),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        PatchScoreCache short_cache, long_cache;
+        for (std::size_t m = r.begin(); m != r.end(); ++m) {
+          out[measured[m]] = Measure(cells[measured[m]], short_cache, long_cache);
+        }
+      },
+      tbb::simple_partitioner());
   // Ambiguous staying connected to measured motion is not staying: a car's long side matches
   // itself unshifted as it drives along it, the inside of a solid body too. Connected: a chain of
   // measured cells, each within link_radius of the next, that are unknown or ambiguous staying,

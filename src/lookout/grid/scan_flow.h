@@ -48,6 +48,9 @@
 
 namespace lookout::grid {
 
+// The widest patch, cells either side of the cell (ScanFlowOptions::patch_half_cells).
+inline constexpr int kMaxPatchHalfCells = 8;
+
 struct ScanFlowOptions {
   // Off: every cell without a trusted velocity gets the wide window (the grid before
   // 2026-12-03; --grid-scan-flow off). On by default since 2026-12-03: the velocity RMSE better
@@ -125,10 +128,25 @@ struct HitMaps {
   void AddFreeNow(int ix, int iy);
 };
 
+// The scores of the patch MeasureFlow last scored on one pair of maps, kept so that the next
+// cell is scored from them. Why: a previous hit adds to the scores independently of the others,
+// so moving the patch by a cell adds the hits of the column it enters and takes away those of the
+// one it leaves (14 cells of the patch's 49), and the cells measured come in runs along rows.
+struct PatchScoreCache {
+  const HitMaps* maps = nullptr;
+  CellIndex cell;
+  int half = -1;
+  std::vector<int> scores;  // doubled scores of the (2 half + 1)^2 displacements, row-major
+};
+
 // The measurement above, over one baseline, for the window-local cell `cell`, displacements
 // within +-search_half_cells. Pure.
 FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int search_half_cells,
                             const ScanFlowOptions& options);
+// The same, scored from `cache` where it holds a patch nearby on the same maps (the same result
+// as without), and leaving this cell's scores in it.
+FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int search_half_cells,
+                            const ScanFlowOptions& options, PatchScoreCache& cache);
 
 // The slow literal form of MeasureFlow (every displacement, every patch cell, the definitions
 // as written above); for tests only.
@@ -149,6 +167,9 @@ class ScanFlow {
   // The flow of window-local `cell` for the prepared pairs, both baselines as above (kUnknown
   // before a pair exists).
   FlowMeasurement Measure(const CellIndex& cell) const;
+  // The same, each baseline scored from its cache (PatchScoreCache).
+  FlowMeasurement Measure(const CellIndex& cell, PatchScoreCache& short_cache,
+                          PatchScoreCache& long_cache) const;
   // Measure for every cells[i] with wanted[i] != 0 (kUnknown for the others), then: an
   // ambiguous kStays connected to a kMoves cell through measured cells that are kUnknown or
   // ambiguous kStays, each within two cells of the next, becomes kUnknown (a car's long side

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -139,6 +140,47 @@ TEST(ScanFlowTest, FastPathMatchesTheDefinitionOnRandomScans) {
       const CellIndex at{cell(rng), cell(rng)};
       ExpectSame(MeasureFlow(maps, at, options.search_half_cells, options),
                  MeasureFlowReference(maps, at, options.search_half_cells, options));
+    }
+  }
+}
+
+// Scored from the patch before (PatchScoreCache): along a walk of small steps (runs along rows,
+// diagonal and longer steps, the window's edges), with the maps and the search changing under
+// one cache, every field as the definition.
+TEST(ScanFlowTest, ScoresMovedFromTheCachedPatchAreTheDefinition) {
+  ScanFlowOptions options;
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> cell(0, kSide - 1), shift(-3, 3), step(-2, 2), coin(0, 9);
+    std::array<HitMaps, 2> maps;
+    for (HitMaps& m : maps) {
+      std::vector<CellIndex> before, now, free_now;
+      const CellIndex d{shift(rng), shift(rng)};
+      for (int k = 0; k < 900; ++k) {  // dense: most patches hold more hits than a step changes
+        const CellIndex c{cell(rng), cell(rng)};
+        before.push_back(c);
+        if (coin(rng) < 8) now.push_back({c.ix + d.ix, c.iy + d.iy});
+        if (coin(rng) < 2) free_now.push_back(c);
+      }
+      m = Pair(before, now, free_now);
+    }
+    PatchScoreCache cache;
+    CellIndex at{cell(rng), cell(rng)};
+    for (int k = 0; k < 300; ++k) {
+      const int r = coin(rng);
+      if (r < 6) {
+        at.ix = std::clamp(at.ix + 1, 0, kSide - 1);  // along a row
+      } else if (r < 9) {
+        at = {std::clamp(at.ix + step(rng), 0, kSide - 1),
+              std::clamp(at.iy + step(rng), 0, kSide - 1)};
+      } else {
+        at = {cell(rng), cell(rng)};
+      }
+      const HitMaps& m = maps[static_cast<std::size_t>(k / 100 % 2)];
+      const int half = k < 200 ? options.search_half_cells : 5;
+      ExpectSame(MeasureFlow(m, at, half, options, cache),
+                 MeasureFlowReference(m, at, half, options));
     }
   }
 }
