@@ -52,10 +52,20 @@ FlowMeasurement Decide(int hits, int vacated, int search_half, const ScoreAt& sc
       best_score = std::max(best_score, score_at({dx, dy}));
     }
   }
+  // Whether row dy holds a score >= at_least: one pass without a branch (it vectorises), so
+  // that the passes below look displacement by displacement only at the few rows near the best.
+  const auto row_reaches = [&](int dy, int at_least) {
+    int reached = 0;
+    for (int dx = -search_half; dx <= search_half; ++dx) {
+      reached |= score_at({dx, dy}) >= at_least ? 1 : 0;
+    }
+    return reached != 0;
+  };
   CellIndex best{0, 0};
   if (score_at(best) != best_score) {
     int best_length2 = std::numeric_limits<int>::max();
     for (int dy = -search_half; dy <= search_half; ++dy) {
+      if (!row_reaches(dy, best_score)) continue;
       for (int dx = -search_half; dx <= search_half; ++dx) {
         if (score_at({dx, dy}) != best_score || dx * dx + dy * dy >= best_length2) continue;
         best = {dx, dy};
@@ -73,7 +83,10 @@ FlowMeasurement Decide(int hits, int vacated, int search_half, const ScoreAt& sc
                                    stay_score < options.shortest_below_stay_share * best_score);
   const double radius2 = options.ambiguity_radius_cells * options.ambiguity_radius_cells;
   const double rival_score = options.ambiguity_share * best_score;
+  // An integer score s is below rival_score exactly when s < ceil(rival_score).
+  const int rival_at_least = static_cast<int>(std::ceil(rival_score));
   for (int dy = -search_half; dy <= search_half; ++dy) {
+    if (!row_reaches(dy, rival_at_least)) continue;
     for (int dx = -search_half; dx <= search_half; ++dx) {
       // The score first: it rules out nearly every displacement at the cost of one comparison.
       if (score_at({dx, dy}) < rival_score) continue;
