@@ -77,6 +77,35 @@ double BlurAt(const SearchWindow& w, const float* p, const CellIndex& d,
   return sum;
 }
 
+// The lattice part of B_y: P (n x n, row-major) blurred by the table K (n x n, symmetric) along
+// u, then along v, into out. N: the side where known at compile time, so that the loops unroll;
+// 0: any side, n. The same sums in the same order either way.
+template <std::size_t N>
+void BlurLattice(const float* p, const double* kernel, std::size_t any_n, float* out) {
+  const std::size_t n = N > 0 ? N : any_n;
+  constexpr auto kMax = static_cast<std::size_t>(kMaxWindowSideCells);
+  std::array<double, kMax * kMax> rows;
+  std::array<double, kMax> column;
+  // Both passes accumulate whole rows (the inner loops have no reduction and vectorise).
+  for (std::size_t v = 0; v < n; ++v) {  // along u: rows(v, u) = sum_u2 P(v, u2) K(u2, u)
+    double* row = &rows[v * n];
+    for (std::size_t u = 0; u < n; ++u) row[u] = 0.0;
+    for (std::size_t u2 = 0; u2 < n; ++u2) {
+      const double pv = static_cast<double>(p[v * n + u2]);
+      const double* k = &kernel[u2 * n];
+      for (std::size_t u = 0; u < n; ++u) row[u] += pv * k[u];
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v) {  // along v: B(v, u) = sum_v2 K(v, v2) rows(v2, u)
+    for (std::size_t u = 0; u < n; ++u) column[u] = 0.0;
+    for (std::size_t v2 = 0; v2 < n; ++v2) {
+      const double k = kernel[v * n + v2];
+      for (std::size_t u = 0; u < n; ++u) column[u] += k * rows[v2 * n + u];
+    }
+    for (std::size_t u = 0; u < n; ++u) out[v * n + u] = static_cast<float>(column[u]);
+  }
+}
+
 }  // namespace
 
 RigidityBlur BlurForRigidity(const Associations& a, const FilterOptions& options) {
@@ -124,7 +153,6 @@ RigidityBlur BlurForRigidity(const Associations& a, const FilterOptions& options
     }
   }
   ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
-    std::vector<double> rows, column;
     for (std::size_t s = begin; s < end; ++s) {
       if (!exact) moments[s] = MomentsOf(a, s);
       const SearchWindow& w = a.window[s];
@@ -134,26 +162,18 @@ RigidityBlur BlurForRigidity(const Associations& a, const FilterOptions& options
             return t.n == n && t.stride == w.stride;
           })->k;
       const float* p = &a.weight[a.first_entry[s]];
-      rows.assign(n * n, 0.0);
-      // Both passes accumulate whole rows (the inner loops have no reduction and vectorise);
-      // K is symmetric.
-      for (std::size_t v = 0; v < n; ++v) {  // along u: rows(v, u) = sum_u2 P(v, u2) K(u2, u)
-        double* row = &rows[v * n];
-        for (std::size_t u2 = 0; u2 < n; ++u2) {
-          const double pv = static_cast<double>(p[v * n + u2]);
-          const double* k = &kernel[u2 * n];
-          for (std::size_t u = 0; u < n; ++u) row[u] += pv * k[u];
-        }
-      }
-      column.assign(n, 0.0);
       float* out = &blurred[a.first_entry[s]];
-      for (std::size_t v = 0; v < n; ++v) {  // along v: B(v, u) = sum_v2 K(v, v2) rows(v2, u)
-        std::fill(column.begin(), column.end(), 0.0);
-        for (std::size_t v2 = 0; v2 < n; ++v2) {
-          const double k = kernel[v * n + v2];
-          for (std::size_t u = 0; u < n; ++u) column[u] += k * rows[v2 * n + u];
-        }
-        for (std::size_t u = 0; u < n; ++u) out[v * n + u] = static_cast<float>(column[u]);
+      // The default windows' sides (window_size_cells, new_window_size_cells) known at compile
+      // time: the loops unroll (the blur 8.2% -> 4.7% of the update's samples on one thread).
+      switch (n) {
+        case 7:
+          BlurLattice<7>(p, kernel.data(), n, out);
+          break;
+        case 13:
+          BlurLattice<13>(p, kernel.data(), n, out);
+          break;
+        default:
+          BlurLattice<0>(p, kernel.data(), n, out);
       }
       if (w.HasDenseCore()) {
         // The dense core: its entries blurred onto the lattice, and the whole window (lattice
