@@ -355,6 +355,16 @@ TEST(ExtendedGridReferenceTest, ExactRigidityMatchesLiteralReference) {
       ExpectMatchesReference(d);
     }
   }
+  // Windows of other sides than the defaults' (whose loops the fast path unrolls at compile
+  // time: BlurLattice in interaction_constraints.cc).
+  FilterOptions options;
+  options.rigidity_exact_across_lattices = true;
+  options.window_size_cells = 5;
+  options.new_window_size_cells = 9;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + " windows 5 and 9");
+    ExpectMatchesReference(RunAgainstReference(seed, options));
+  }
 }
 
 // --- determinism
