@@ -20,11 +20,22 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
   // Below this carried weight the cell received nothing worth an estimate.
   constexpr double kMinWeight = 1e-6;
   const bool with_share = options.moved_share_exponent > 0.0;
-  // Per source: the mean and variance of where its mass went (its displacement posterior).
+  // Per source: the mean and second moment of where its mass went (its displacement posterior),
+  // and its carried velocity and confidence; one record a source, as the cells' gathers read them
+  // (six arrays before: six cache lines a contribution).
+  struct SourceMotion {
+    double mean_x = 0.0, mean_y = 0.0;
+    double second_moment = 0.0;  // variance + |mean|^2
+    double velocity_x = 0.0, velocity_y = 0.0, confidence = 0.0;
+  };
   const std::size_t sources = a.SourceCount();
-  std::vector<double> source_mean_x(sources), source_mean_y(sources), variance(sources);
+  std::vector<SourceMotion> motion(sources);
   ParallelForBlocks(sources, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
+      SourceMotion& m = motion[s];
+      m.velocity_x = static_cast<double>(a.velocity_x_mps[s]);
+      m.velocity_y = static_cast<double>(a.velocity_y_mps[s]);
+      m.confidence = static_cast<double>(a.confidence[s]);
       double w_sum = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
       const std::size_t first = a.first_entry[s];
       a.window[s].ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
@@ -42,10 +53,10 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
         s2 += w * (d.ix * d.ix + d.iy * d.iy);
       });
       if (w_sum <= 0.0) continue;
-      source_mean_x[s] = sx / w_sum;
-      source_mean_y[s] = sy / w_sum;
-      variance[s] = std::max(0.0, s2 / w_sum - source_mean_x[s] * source_mean_x[s] -
-                                     source_mean_y[s] * source_mean_y[s]);
+      m.mean_x = sx / w_sum;
+      m.mean_y = sy / w_sum;
+      const double variance = std::max(0.0, s2 / w_sum - m.mean_x * m.mean_x - m.mean_y * m.mean_y);
+      m.second_moment = variance + m.mean_x * m.mean_x + m.mean_y * m.mean_y;
     }
   });
   ParallelForBlocks(cells.size(), 1024, [&](std::size_t begin, std::size_t end) {
@@ -57,13 +68,13 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
         sum = GatherWeighted(a, targets, c.target_slot,
                              [&](std::uint32_t e, std::uint32_t s, double w) {
                                if (with_share) stayed += w * static_cast<double>(a.stay_share[e]);
-                               dx += w * source_mean_x[s];
-                               dy += w * source_mean_y[s];
-                               d2 += w * (variance[s] + source_mean_x[s] * source_mean_x[s] +
-                                          source_mean_y[s] * source_mean_y[s]);
-                               vx += w * static_cast<double>(a.velocity_x_mps[s]);
-                               vy += w * static_cast<double>(a.velocity_y_mps[s]);
-                               conf += w * static_cast<double>(a.confidence[s]);
+                               const SourceMotion& m = motion[s];
+                               dx += w * m.mean_x;
+                               dy += w * m.mean_y;
+                               d2 += w * m.second_moment;
+                               vx += w * m.velocity_x;
+                               vy += w * m.velocity_y;
+                               conf += w * m.confidence;
                              });
       }
       if (sum < kMinWeight) {
