@@ -1,6 +1,19 @@
 #include "lookout/grid/rigidity_update.h"
 
+#include <array>
+#include <cstdlib>
+
 namespace lookout::grid {
+namespace {
+
+// The lattice index (u or v) of y's window at `offset` cells from its centre along one axis, or
+// -1 when no sample of the window lies there.
+int LatticeIndex(const SearchWindow& w, int offset) {
+  if (offset % w.stride != 0 || std::abs(offset) > w.stride * w.half) return -1;
+  return offset / w.stride + w.half;
+}
+
+}  // namespace
 
 std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndexer& indexer,
                                         const FilterWorkspace& workspace) {
@@ -34,12 +47,39 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
           links[x * kNeighbourCount + d] = static_cast<float>(overlap);
           continue;
         }
-        wx.ForEachDisplacement([&](std::size_t k, const CellIndex& disp) {
-          const std::int64_t ky = wy.EntryOf(disp);
-          if (ky < 0) return;
-          overlap += static_cast<double>(px[k]) *
-                     static_cast<double>(py[static_cast<std::size_t>(ky)]);
-        });
+        if (!wx.HasDenseCore() && !wy.HasDenseCore()) {
+          // Two lattices: x's displacement (column u, row v) is y's entry (row_of[v],
+          // column_of[u]) when each axis falls on y's lattice; found once an axis, not by
+          // EntryOf's two divisions an entry. The same terms in the same order.
+          std::array<int, kMaxWindowSideCells> column_of, row_of;
+          const int n = wx.size();
+          for (int u = 0; u < n; ++u) {
+            const int offset = wx.stride * (u - wx.half);
+            column_of[static_cast<std::size_t>(u)] =
+                LatticeIndex(wy, wx.center.ix + offset - wy.center.ix);
+            row_of[static_cast<std::size_t>(u)] =
+                LatticeIndex(wy, wx.center.iy + offset - wy.center.iy);
+          }
+          const auto ny = static_cast<std::size_t>(wy.size());
+          for (int v = 0; v < n; ++v) {
+            const int vy = row_of[static_cast<std::size_t>(v)];
+            if (vy < 0) continue;
+            for (int u = 0; u < n; ++u) {
+              const int uy = column_of[static_cast<std::size_t>(u)];
+              if (uy < 0) continue;
+              overlap += static_cast<double>(px[static_cast<std::size_t>(v * n + u)]) *
+                         static_cast<double>(
+                             py[static_cast<std::size_t>(vy) * ny + static_cast<std::size_t>(uy)]);
+            }
+          }
+        } else {
+          wx.ForEachDisplacement([&](std::size_t k, const CellIndex& disp) {
+            const std::int64_t ky = wy.EntryOf(disp);
+            if (ky < 0) return;
+            overlap +=
+                static_cast<double>(px[k]) * static_cast<double>(py[static_cast<std::size_t>(ky)]);
+          });
+        }
         links[x * kNeighbourCount + d] = static_cast<float>(overlap);
       }
     }
