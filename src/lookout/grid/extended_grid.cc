@@ -45,18 +45,17 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
       PredictAssociations(layers_, ids_, indexer, z, dt_s, options_, &flow_);              // 2
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
-  // The target index and the update list are serial passes; the rigidity blur reads only Pw.
-  // One thread builds the first two while the blur's blocks go to whichever thread is free.
+  // The target index and the update list are serial passes: each runs on one thread beside a
+  // parallel stage that does not read it (the rigidity blur reads only Pw; the constraints read
+  // no update list), whose blocks go to whichever thread is free.
   TargetIndex targets;
-  std::vector<UpdateCell> cells;
   RigidityBlur blur;
+  tbb::parallel_invoke([&] { targets = BuildTargetIndex(associations, workspace_); },
+                       [&] { blur = BlurForRigidity(associations, options_); });
+  std::vector<UpdateCell> cells;
   tbb::parallel_invoke(
-      [&] {
-        targets = BuildTargetIndex(associations, workspace_);
-        cells = BuildUpdateList(targets, associations, z, workspace_);
-      },
-      [&] { blur = BlurForRigidity(associations, options_); });
-  ApplyConstraints(indexer, targets, workspace_, options_, blur, associations);  // 4
+      [&] { cells = BuildUpdateList(targets, associations, z, workspace_); },
+      [&] { ApplyConstraints(indexer, targets, workspace_, options_, blur, associations); });  // 4
 
   UpdateOccupancy(associations, targets, cells, z, options_, layers_.Values(ids_.occupancy),
                   layers_.Values(ids_.seen));                                              // 5
