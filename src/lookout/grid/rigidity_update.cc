@@ -1,5 +1,6 @@
 #include "lookout/grid/rigidity_update.h"
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdlib>
 
@@ -101,28 +102,38 @@ void UpdateRigidity(const Associations& a, const TargetIndex& targets,
                     const FilterWorkspace& workspace,
                     const std::array<std::span<float>, kNeighbourCount>& rigidity) {
   const std::vector<float> links = ComputeRigidityLinks(a, indexer, workspace);
+  // A source's eight links as doubles, in one Eigen array: the gather's eight products and the
+  // eight quotients are then four vector operations each (element-wise: the same values; written
+  // as scalar loops, the compiler left them scalar).
+  using Links = Eigen::Array<double, kNeighbourCount, 1>;
+  std::vector<Links> wide_links(a.SourceCount());
+  for (std::size_t s = 0; s < a.SourceCount(); ++s) {
+    for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+      wide_links[s](static_cast<Eigen::Index>(d)) =
+          static_cast<double>(links[s * kNeighbourCount + d]);
+    }
+  }
+  std::array<float*, kNeighbourCount> out;
+  for (std::size_t d = 0; d < kNeighbourCount; ++d) out[d] = rigidity[d].data();
   ParallelForBlocks(cells.size(), 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t u = begin; u < end; ++u) {
       const UpdateCell& c = cells[u];
-      std::array<double, kNeighbourCount> carried{};
+      Links carried = Links::Zero();
       double sum = 0.0;
       if (c.target_slot != FilterWorkspace::kNone) {
-        sum = GatherWeighted(a, targets, c.target_slot,
-                             [&](std::uint32_t, std::uint32_t s, double w) {
-                               for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-                                 carried[d] +=
-                                     w * static_cast<double>(links[s * kNeighbourCount + d]);
-                               }
-                             });
+        sum = GatherWeighted(
+            a, targets, c.target_slot,
+            [&](std::uint32_t, std::uint32_t s, double w) { carried += w * wide_links[s]; });
       }
       if (sum <= 0.0) {
         if (c.source != FilterWorkspace::kNone) {
-          for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d][c.cell] = 0.0f;
+          for (std::size_t d = 0; d < kNeighbourCount; ++d) out[d][c.cell] = 0.0f;
         }
         continue;
       }
+      carried /= sum;
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-        rigidity[d][c.cell] = static_cast<float>(carried[d] / sum);
+        out[d][c.cell] = static_cast<float>(carried(static_cast<Eigen::Index>(d)));
       }
     }
   });
