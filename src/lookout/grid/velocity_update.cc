@@ -1,5 +1,7 @@
 #include "lookout/grid/velocity_update.h"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,22 +22,20 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
   // Below this carried weight the cell received nothing worth an estimate.
   constexpr double kMinWeight = 1e-6;
   const bool with_share = options.moved_share_exponent > 0.0;
-  // Per source: the mean and second moment of where its mass went (its displacement posterior),
-  // and its carried velocity and confidence; one record a source, as the cells' gathers read them
-  // (six arrays before: six cache lines a contribution).
-  struct SourceMotion {
-    double mean_x = 0.0, mean_y = 0.0;
-    double second_moment = 0.0;  // variance + |mean|^2
-    double velocity_x = 0.0, velocity_y = 0.0, confidence = 0.0;
-  };
+  // Per source, one Eigen array: the mean (x, y) and second moment of where its mass went (its
+  // displacement posterior), its carried velocity (x, y) and confidence. Why one array: the cells'
+  // gathers read one record a contribution (six arrays before: six cache lines), and its six
+  // products are three vector operations (element-wise: the same sums).
+  using Motion = Eigen::Array<double, 6, 1>;
+  enum : Eigen::Index { kMeanX, kMeanY, kSecondMoment, kVelocityX, kVelocityY, kConfidence };
   const std::size_t sources = a.SourceCount();
-  std::vector<SourceMotion> motion(sources);
+  std::vector<Motion> motion(sources, Motion::Zero());
   ParallelForBlocks(sources, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
-      SourceMotion& m = motion[s];
-      m.velocity_x = static_cast<double>(a.velocity_x_mps[s]);
-      m.velocity_y = static_cast<double>(a.velocity_y_mps[s]);
-      m.confidence = static_cast<double>(a.confidence[s]);
+      Motion& m = motion[s];
+      m(kVelocityX) = static_cast<double>(a.velocity_x_mps[s]);
+      m(kVelocityY) = static_cast<double>(a.velocity_y_mps[s]);
+      m(kConfidence) = static_cast<double>(a.confidence[s]);
       double w_sum = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
       const std::size_t first = a.first_entry[s];
       a.window[s].ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
@@ -53,30 +53,30 @@ void UpdateVelocity(const Associations& a, const TargetIndex& targets,
         s2 += w * (d.ix * d.ix + d.iy * d.iy);
       });
       if (w_sum <= 0.0) continue;
-      m.mean_x = sx / w_sum;
-      m.mean_y = sy / w_sum;
-      const double variance = std::max(0.0, s2 / w_sum - m.mean_x * m.mean_x - m.mean_y * m.mean_y);
-      m.second_moment = variance + m.mean_x * m.mean_x + m.mean_y * m.mean_y;
+      const double mean_x = sx / w_sum;
+      const double mean_y = sy / w_sum;
+      const double variance = std::max(0.0, s2 / w_sum - mean_x * mean_x - mean_y * mean_y);
+      m(kMeanX) = mean_x;
+      m(kMeanY) = mean_y;
+      m(kSecondMoment) = variance + mean_x * mean_x + mean_y * mean_y;
     }
   });
   ParallelForBlocks(cells.size(), 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t u = begin; u < end; ++u) {
       const UpdateCell& c = cells[u];
-      double sum = 0.0, dx = 0.0, dy = 0.0, d2 = 0.0, vx = 0.0, vy = 0.0, conf = 0.0;
+      Motion carried = Motion::Zero();
+      double sum = 0.0;
       double stayed = 0.0;
       if (c.target_slot != FilterWorkspace::kNone) {
         sum = GatherWeighted(a, targets, c.target_slot,
                              [&](std::uint32_t e, std::uint32_t s, double w) {
                                if (with_share) stayed += w * static_cast<double>(a.stay_share[e]);
-                               const SourceMotion& m = motion[s];
-                               dx += w * m.mean_x;
-                               dy += w * m.mean_y;
-                               d2 += w * m.second_moment;
-                               vx += w * m.velocity_x;
-                               vy += w * m.velocity_y;
-                               conf += w * m.confidence;
+                               carried += w * motion[s];
                              });
       }
+      const double dx = carried(kMeanX), dy = carried(kMeanY), d2 = carried(kSecondMoment);
+      const double vx = carried(kVelocityX), vy = carried(kVelocityY);
+      const double conf = carried(kConfidence);
       if (sum < kMinWeight) {
         if (c.source != FilterWorkspace::kNone) {
           out.velocity_x_mps[c.cell] = 0.0f;
