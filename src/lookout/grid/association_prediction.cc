@@ -66,36 +66,58 @@ SearchWindow MeasuredFlowWindow(const FlowMeasurement& flow, const float* class_
   return w;
 }
 
-std::vector<SearchWindow> SourceWindows(
-    std::span<const CellIndex> locals, std::span<const float> velocity_x_mps,
-    std::span<const float> velocity_y_mps, std::span<const float> seen,
-    std::span<const float> confidence, std::span<const float> class_pmf, double dt_s,
-    double cell_size_m, const FilterOptions& options, const ScanFlow* flow) {
-  const std::size_t n = locals.size();
-  std::vector<SearchWindow> windows(n);
-  std::vector<std::uint8_t> wide(n, 0);
-  ParallelForBlocks(n, kSourceBlock, [&](std::size_t begin, std::size_t end) {
+namespace {
+
+// SearchWindowFor for every source.
+std::vector<SearchWindow> PredictedWindows(std::span<const float> velocity_x_mps,
+                                           std::span<const float> velocity_y_mps,
+                                           std::span<const float> seen,
+                                           std::span<const float> confidence,
+                                           std::span<const float> class_pmf, double dt_s,
+                                           double cell_size_m, const FilterOptions& options) {
+  std::vector<SearchWindow> windows(velocity_x_mps.size());
+  ParallelForBlocks(windows.size(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       windows[s] = SearchWindowFor(static_cast<double>(velocity_x_mps[s]),
                                    static_cast<double>(velocity_y_mps[s]),
                                    static_cast<double>(seen[s]), static_cast<double>(confidence[s]),
                                    &class_pmf[s * kGridClassCount], dt_s, cell_size_m, options);
-      wide[s] = windows[s].stride != 1 ? 1 : 0;
     }
   });
-  if (flow == nullptr || !flow->HasPair()) return windows;
+  return windows;
+}
+
+// MeasuredFlowWindow in place of the wide windows whose flow `flow` measures.
+void ApplyMeasuredFlow(std::span<const CellIndex> locals, std::span<const float> class_pmf,
+                       double dt_s, double cell_size_m, const FilterOptions& options,
+                       const ScanFlow* flow, std::vector<SearchWindow>& windows) {
+  if (flow == nullptr || !flow->HasPair()) return;
+  std::vector<std::uint8_t> wide(windows.size());
+  for (std::size_t s = 0; s < windows.size(); ++s) wide[s] = windows[s].stride != 1 ? 1 : 0;
   const std::vector<FlowMeasurement> measured = flow->MeasureCells(locals, wide);
-  for (std::size_t s = 0; s < n; ++s) {
+  for (std::size_t s = 0; s < windows.size(); ++s) {
     if (measured[s].kind == FlowKind::kUnknown) continue;
     windows[s] = MeasuredFlowWindow(measured[s], &class_pmf[s * kGridClassCount], dt_s, cell_size_m,
                                     options);
   }
+}
+
+}  // namespace
+
+std::vector<SearchWindow> SourceWindows(
+    std::span<const CellIndex> locals, std::span<const float> velocity_x_mps,
+    std::span<const float> velocity_y_mps, std::span<const float> seen,
+    std::span<const float> confidence, std::span<const float> class_pmf, double dt_s,
+    double cell_size_m, const FilterOptions& options, const ScanFlow* flow) {
+  std::vector<SearchWindow> windows = PredictedWindows(
+      velocity_x_mps, velocity_y_mps, seen, confidence, class_pmf, dt_s, cell_size_m, options);
+  ApplyMeasuredFlow(locals, class_pmf, dt_s, cell_size_m, options, flow, windows);
   return windows;
 }
 
-Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
-                                 const WindowIndexer& indexer, const MeasurementGrid& z,
-                                 double dt_s, const FilterOptions& options, const ScanFlow* flow) {
+Associations CollectSources(const GridLayers& layers, const FilterLayerIds& ids,
+                            const WindowIndexer& indexer, const MeasurementGrid& z, double dt_s,
+                            const FilterOptions& options) {
   Associations a;
   const auto occupancy = layers.Values(ids.occupancy);
   const auto seen = layers.Values(ids.seen);
@@ -142,8 +164,6 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
   a.confidence.resize(sources);
   a.class_pmf.resize(sources * kGridClassCount);
   a.rigidity.resize(sources * kNeighbourCount);
-  a.first_entry.resize(sources + 1);
-  a.first_entry[0] = 0;
   ParallelForBlocks(sources, kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       const std::size_t cell = a.source[s];
@@ -163,8 +183,17 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
       }
     }
   });
-  a.window = SourceWindows(a.source_local, a.velocity_x_mps, a.velocity_y_mps, a.seen, a.confidence,
-                           a.class_pmf, dt_s, cell_size_m, options, flow);
+  a.window = PredictedWindows(a.velocity_x_mps, a.velocity_y_mps, a.seen, a.confidence, a.class_pmf,
+                              dt_s, cell_size_m, options);
+  return a;
+}
+
+void PredictFromSources(const WindowIndexer& indexer, double dt_s, double cell_size_m,
+                        const FilterOptions& options, const ScanFlow* flow, Associations& a) {
+  ApplyMeasuredFlow(a.source_local, a.class_pmf, dt_s, cell_size_m, options, flow, a.window);
+  const std::size_t sources = a.SourceCount();
+  a.first_entry.resize(sources + 1);
+  a.first_entry[0] = 0;
   for (std::size_t s = 0; s < sources; ++s) {
     a.first_entry[s + 1] = a.first_entry[s] + a.window[s].EntryCount();
   }
@@ -195,6 +224,13 @@ Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds&
                  with_share && static_prediction ? &a.stay_share[first] : nullptr);
     }
   });
+}
+
+Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
+                                 const WindowIndexer& indexer, const MeasurementGrid& z,
+                                 double dt_s, const FilterOptions& options, const ScanFlow* flow) {
+  Associations a = CollectSources(layers, ids, indexer, z, dt_s, options);
+  PredictFromSources(indexer, dt_s, layers.geometry().cell_size_m(), options, flow, a);
   return a;
 }
 

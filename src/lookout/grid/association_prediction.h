@@ -61,10 +61,22 @@ std::vector<SearchWindow> SourceWindows(
 
 // Eq. 8-9 for every active cell: the sources with their state copied (the velocity predicted,
 // observed or not by `z`), their windows, and the normalised Psi in Associations::weight.
-// Parallel over sources; deterministic.
+// Parallel over sources; deterministic. CollectSources then PredictFromSources.
 Associations PredictAssociations(const GridLayers& layers, const FilterLayerIds& ids,
                                  const WindowIndexer& indexer, const MeasurementGrid& z,
                                  double dt_s, const FilterOptions& options,
                                  const ScanFlow* flow = nullptr);
+
+// PredictAssociations in two halves. Why: the first reads no scan pair, so the update runs it
+// beside ScanFlow::Prepare (a serial pass). CollectSources: the sources, their state and the
+// windows SearchWindowFor gives them (Associations::window; nothing per entry yet).
+Associations CollectSources(const GridLayers& layers, const FilterLayerIds& ids,
+                            const WindowIndexer& indexer, const MeasurementGrid& z, double dt_s,
+                            const FilterOptions& options);
+// PredictFromSources: the windows `flow` measures (as SourceWindows), then the entries' targets
+// and Psi.
+void PredictFromSources(const WindowIndexer& indexer, double dt_s, double cell_size_m,
+                        const FilterOptions& options, const ScanFlow* flow,
+                        Associations& associations);
 
 }  // namespace lookout::grid

@@ -40,9 +40,12 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   const WindowIndexer indexer(geometry());
 
   const Clock::time_point start = Clock::now();
-  flow_.Prepare(z);
-  Associations associations =
-      PredictAssociations(layers_, ids_, indexer, z, dt_s, options_, &flow_);              // 2
+  // The scan pair's preparation is a serial pass; the sources' collection does not read it.
+  Associations associations;
+  tbb::parallel_invoke(
+      [&] { flow_.Prepare(z); },
+      [&] { associations = CollectSources(layers_, ids_, indexer, z, dt_s, options_); });
+  PredictFromSources(indexer, dt_s, geometry().cell_size_m(), options_, &flow_, associations);  // 2
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
   // The target index and the update list are serial passes: each runs on one thread beside a
