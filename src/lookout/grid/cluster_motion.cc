@@ -438,8 +438,15 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
                                       const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
                                       double known_confidence,
                                       const ClusterMotionOptions& options) {
+  const std::vector<std::size_t> hits_now = CountHitScans(z, layers.Values(ids.hit_scans));
+  return ApplyClusterMotion(layers, ids, z, flow, dt_s, known_confidence, options, hits_now);
+}
+
+ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
+                                      const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
+                                      double known_confidence, const ClusterMotionOptions& options,
+                                      std::span<const std::size_t> hits_now) {
   const std::span<float> hit_scans = layers.Values(ids.hit_scans);
-  const std::vector<std::size_t> hits_now = CountHitScans(z, hit_scans);
   ClusterStageOutput out;
   std::vector<MeasuredBody>& measured = out.measured;
   if (!options.enabled || !flow.HasPair()) return out;

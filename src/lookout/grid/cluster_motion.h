@@ -235,5 +235,11 @@ struct ClusterStageOutput {
 ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
                                       const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
                                       double known_confidence, const ClusterMotionOptions& options);
+// The same with the hit counts already taken: `hits_now` is CountHitScans of z on the layers'
+// hit_scans (the update takes them beside the scan pair's preparation, a serial pass too).
+ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
+                                      const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
+                                      double known_confidence, const ClusterMotionOptions& options,
+                                      std::span<const std::size_t> hits_now);
 
 }  // namespace lookout::grid

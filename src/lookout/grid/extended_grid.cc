@@ -40,11 +40,14 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   const WindowIndexer indexer(geometry());
 
   const Clock::time_point start = Clock::now();
-  // The scan pair's preparation is a serial pass; the sources' collection does not read it.
+  // The scan pair's preparation and the hit counts (for the clusters' stage) are serial passes;
+  // the sources' collection reads neither.
   Associations associations;
+  std::vector<std::size_t> hits_now;
   tbb::parallel_invoke(
       [&] { flow_.Prepare(z); },
-      [&] { associations = CollectSources(layers_, ids_, indexer, z, dt_s, options_); });
+      [&] { associations = CollectSources(layers_, ids_, indexer, z, dt_s, options_); },
+      [&] { hits_now = CountHitScans(z, layers_.Values(ids_.hit_scans)); });
   PredictFromSources(indexer, dt_s, geometry().cell_size_m(), options_, &flow_, associations);  // 2
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
@@ -72,7 +75,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   UpdateRigidity(associations, targets, cells, indexer, workspace_, rigidity);             // 7
   // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
   const ClusterStageOutput found = ApplyClusterMotion(
-      layers_, ids_, z, flow_, dt_s, options_.known_confidence, options_.cluster_motion);
+      layers_, ids_, z, flow_, dt_s, options_.known_confidence, options_.cluster_motion, hits_now);
   const Clock::time_point motion_done = Clock::now();
   // Beyond the paper: the bodies going into a shadow remembered, those in one carried whole
   // (hidden_bodies.h).
