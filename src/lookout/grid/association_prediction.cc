@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <span>
 #include <cmath>
+#include <cstddef>
+#include <span>
 
 namespace lookout::grid {
 
@@ -209,14 +210,36 @@ void PredictFromSources(const WindowIndexer& indexer, double dt_s, double cell_s
       const SearchWindow& w = a.window[s];
       const CellIndex from = a.source_local[s];
       const std::size_t first = a.first_entry[s];
-      w.ForEachDisplacement([&](std::size_t k, const CellIndex& d) {
-        const int tx = from.ix + d.ix;
-        const int ty = from.iy + d.iy;
-        a.target[first + k] = indexer.Inside(tx, ty)
-                                  ? static_cast<std::int64_t>(indexer.Storage(tx, ty))
-                                  : kOutsideWindow;
-        a.entry_source[first + k] = static_cast<std::uint32_t>(s);
+      // The lattice row by row: a column's storage offset found once, not once an entry.
+      const int n = w.size();
+      std::array<std::int64_t, kMaxWindowSideCells> column;  // kOutsideWindow: off the window
+      for (int u = 0; u < n; ++u) {
+        const int tx = from.ix + w.center.ix + w.stride * (u - w.half);
+        column[static_cast<std::size_t>(u)] =
+            tx >= 0 && tx < indexer.width() ? static_cast<std::int64_t>(indexer.ColumnStorage(tx))
+                                            : kOutsideWindow;
+      }
+      std::int64_t* target = &a.target[first];
+      for (int v = 0; v < n; ++v) {
+        const int ty = from.iy + w.center.iy + w.stride * (v - w.half);
+        std::int64_t* row = target + static_cast<std::ptrdiff_t>(v) * n;
+        if (ty < 0 || ty >= indexer.height()) {
+          std::fill_n(row, n, kOutsideWindow);
+          continue;
+        }
+        const auto base = static_cast<std::int64_t>(indexer.RowStorage(ty));
+        for (int u = 0; u < n; ++u) {
+          const std::int64_t c = column[static_cast<std::size_t>(u)];
+          row[u] = c == kOutsideWindow ? kOutsideWindow : base + c;
+        }
+      }
+      w.ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {
+        const int tx = from.ix + w.center.ix + o.ix;
+        const int ty = from.iy + w.center.iy + o.iy;
+        target[k] = indexer.Inside(tx, ty) ? static_cast<std::int64_t>(indexer.Storage(tx, ty))
+                                           : kOutsideWindow;
       });
+      std::fill_n(&a.entry_source[first], w.EntryCount(), static_cast<std::uint32_t>(s));
       // The stay component is the static hypothesis only where the prediction is no motion.
       const bool static_prediction =
           std::hypot(w.mean_x_cells, w.mean_y_cells) < 0.5 && w.stay_weight > 0.0;

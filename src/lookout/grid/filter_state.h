@@ -65,6 +65,11 @@ class WindowIndexer {
     return row_base_[static_cast<std::size_t>(local_y)] +
            column_[static_cast<std::size_t>(local_x)];
   }
+  // Local column `local_x`'s offset within a row's storage (Storage(x, y) is RowStorage(y) plus
+  // it). Precondition: 0 <= local_x < width().
+  std::size_t ColumnStorage(int local_x) const {
+    return column_[static_cast<std::size_t>(local_x)];
+  }
   // Where local row `local_y`'s cells start in storage: whatever the scroll, a row is width()
   // consecutive storage cells from here (in storage-column order, not local x order).
   // Precondition: 0 <= local_y < height().
