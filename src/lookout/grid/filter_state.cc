@@ -55,11 +55,9 @@ WindowIndexer::WindowIndexer(const ScrollingGridGeometry& geometry)
 std::int64_t SearchWindow::EntryOf(const CellIndex& d) const {
   const int x = d.ix - center.ix;
   const int y = d.iy - center.iy;
-  if (OnLattice(x, y)) {
-    const int u = x / stride + half;
-    const int v = y / stride + half;
-    return static_cast<std::int64_t>(v) * size() + u;
-  }
+  const int u = LatticeIndex(x);
+  const int v = LatticeIndex(y);
+  if (u >= 0 && v >= 0) return static_cast<std::int64_t>(v) * size() + u;
   if (!HasDenseCore() || std::abs(x) > dense_half || std::abs(y) > dense_half) return -1;
   std::int64_t found = -1;
   ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {

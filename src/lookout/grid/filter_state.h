@@ -123,11 +123,14 @@ struct SearchWindow {
     return static_cast<std::size_t>(size()) * static_cast<std::size_t>(size());
   }
   bool HasDenseCore() const { return stride > 1 && dense_half > 0; }
-  // Whether the offset (x, y) from the centre lies on the lattice.
-  bool OnLattice(int x, int y) const {
-    return x % stride == 0 && y % stride == 0 && std::abs(x) <= stride * half &&
-           std::abs(y) <= stride * half;
+  // The lattice column (or row) of the sample `offset` cells from the centre along one axis, or
+  // -1 when no lattice sample lies there.
+  int LatticeIndex(int offset) const {
+    if (offset % stride != 0 || std::abs(offset) > stride * half) return -1;
+    return offset / stride + half;
   }
+  // Whether the offset (x, y) from the centre lies on the lattice.
+  bool OnLattice(int x, int y) const { return LatticeIndex(x) >= 0 && LatticeIndex(y) >= 0; }
   std::size_t DenseCount() const {
     if (!HasDenseCore()) return 0;
     std::size_t n = 0;
@@ -270,6 +273,16 @@ double GatherWeighted(const Associations& a, const TargetIndex& targets, std::ui
     sum += w;
   }
   return sum;
+}
+
+// The source linked to source s in direction d (its 8-neighbour at kNeighbourOffsets[d], when
+// that cell is a source), or FilterWorkspace::kNone. Needs workspace.source_of_cell mapped.
+inline std::uint32_t LinkedSource(const Associations& a, const WindowIndexer& indexer,
+                                  const FilterWorkspace& workspace, std::size_t s, std::size_t d) {
+  const int nx = a.source_local[s].ix + kNeighbourOffsets[d].ix;
+  const int ny = a.source_local[s].iy + kNeighbourOffsets[d].iy;
+  if (!indexer.Inside(nx, ny)) return FilterWorkspace::kNone;
+  return workspace.source_of_cell[indexer.Storage(nx, ny)];
 }
 
 // Sources per block in the per-source parallel loops. Why so few: a wide window costs 3.5 to 6

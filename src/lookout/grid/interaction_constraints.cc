@@ -252,10 +252,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
               std::min(1.0, options.rigidity_link_gain *
                                 static_cast<double>(a.rigidity[s * kNeighbourCount + d]));
           if (strength <= 0.0) continue;
-          const int nx = a.source_local[s].ix + kNeighbourOffsets[d].ix;
-          const int ny = a.source_local[s].iy + kNeighbourOffsets[d].iy;
-          if (!indexer.Inside(nx, ny)) continue;
-          const std::uint32_t y = workspace.source_of_cell[indexer.Storage(nx, ny)];
+          const std::uint32_t y = LinkedSource(a, indexer, workspace, s, d);
           if (y == FilterWorkspace::kNone) continue;
           const SearchWindow& wy = a.window[y];
           const bool same_lattice = wy.SameEntries(w);

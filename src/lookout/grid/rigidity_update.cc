@@ -1,37 +1,20 @@
 #include "lookout/grid/rigidity_update.h"
 
 #include <Eigen/Core>
+
 #include <array>
-#include <cstdlib>
 
 namespace lookout::grid {
-namespace {
-
-// The lattice index (u or v) of y's window at `offset` cells from its centre along one axis, or
-// -1 when no sample of the window lies there.
-int LatticeIndex(const SearchWindow& w, int offset) {
-  if (offset % w.stride != 0 || std::abs(offset) > w.stride * w.half) return -1;
-  return offset / w.stride + w.half;
-}
-
-}  // namespace
 
 std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndexer& indexer,
                                         const FilterWorkspace& workspace) {
   std::vector<float> links(a.SourceCount() * kNeighbourCount, 0.0f);
-  // The source y linked to x in direction d, or kNone.
-  const auto neighbour = [&](std::size_t x, std::size_t d) {
-    const int nx = a.source_local[x].ix + kNeighbourOffsets[d].ix;
-    const int ny = a.source_local[x].iy + kNeighbourOffsets[d].iy;
-    if (!indexer.Inside(nx, ny)) return FilterWorkspace::kNone;
-    return workspace.source_of_cell[indexer.Storage(nx, ny)];
-  };
   constexpr std::size_t kHalf = kNeighbourCount / 2;  // d and d + kHalf are opposite
   ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t x = begin; x < end; ++x) {
       const SearchWindow& wx = a.window[x];
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-        const std::uint32_t y = neighbour(x, d);
+        const std::uint32_t y = LinkedSource(a, indexer, workspace, x, d);
         if (y == FilterWorkspace::kNone) continue;
         const SearchWindow& wy = a.window[y];
         double overlap = 0.0;
@@ -57,9 +40,9 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
           for (int u = 0; u < n; ++u) {
             const int offset = wx.stride * (u - wx.half);
             column_of[static_cast<std::size_t>(u)] =
-                LatticeIndex(wy, wx.center.ix + offset - wy.center.ix);
+                wy.LatticeIndex(wx.center.ix + offset - wy.center.ix);
             row_of[static_cast<std::size_t>(u)] =
-                LatticeIndex(wy, wx.center.iy + offset - wy.center.iy);
+                wy.LatticeIndex(wx.center.iy + offset - wy.center.iy);
           }
           const auto ny = static_cast<std::size_t>(wy.size());
           for (int v = 0; v < n; ++v) {
@@ -88,7 +71,7 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
   ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t x = begin; x < end; ++x) {
       for (std::size_t d = kHalf; d < kNeighbourCount; ++d) {
-        const std::uint32_t y = neighbour(x, d);
+        const std::uint32_t y = LinkedSource(a, indexer, workspace, x, d);
         if (y == FilterWorkspace::kNone || !a.window[y].SameEntries(a.window[x])) continue;
         links[x * kNeighbourCount + d] = links[y * kNeighbourCount + (d - kHalf)];
       }
