@@ -211,26 +211,27 @@ namespace {
 // vectorised sum (a gather per hit and displacement before: docs/PERFORMANCE.md, "The scan
 // pair's patch scores"). A displacement that takes the hit out of the window scores
 // OutsideScore.
-void AddHitScores(const HitMaps& maps, int x, int y, int half, int sign, int* scores) {
+void AddHitScores(const HitMaps& maps, int x, int y, int half, int sign, std::int16_t* scores) {
   const int side = 2 * half + 1;
   const int x0 = x - half;
   const bool row_inside = x0 >= 0 && x + half < maps.width;
   for (int dy = -half; dy <= half; ++dy) {
     const int row_y = y + dy;
-    int* row = &scores[static_cast<std::size_t>((dy + half) * side)];
+    std::int16_t* row = &scores[static_cast<std::size_t>((dy + half) * side)];
     if (row_inside && row_y >= 0 && row_y < maps.height) {
       const std::uint8_t* now = &maps.now[maps.At(x0, row_y)];
       if (sign > 0) {
-        for (int i = 0; i < side; ++i) row[i] += now[i];
+        for (int i = 0; i < side; ++i) row[i] = static_cast<std::int16_t>(row[i] + now[i]);
       } else {
-        for (int i = 0; i < side; ++i) row[i] -= now[i];
+        for (int i = 0; i < side; ++i) row[i] = static_cast<std::int16_t>(row[i] - now[i]);
       }
       continue;
     }
     for (int i = 0; i < side; ++i) {
       const int row_x = x0 + i;
-      row[i] += sign * (maps.Inside(row_x, row_y) ? maps.now[maps.At(row_x, row_y)]
-                                                  : OutsideScore(maps, row_x, row_y));
+      row[i] = static_cast<std::int16_t>(row[i] + sign * (maps.Inside(row_x, row_y)
+                                                              ? maps.now[maps.At(row_x, row_y)]
+                                                              : OutsideScore(maps, row_x, row_y)));
     }
   }
 }
@@ -264,7 +265,7 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
   const int side = 2 * half + 1;
   const auto area = static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
   if (cache.scores.size() < area) cache.scores.resize(area);
-  int* scores = cache.scores.data();
+  std::int16_t* scores = cache.scores.data();
   // The cached patch's scores moved to this one: the hits of the cells in one patch and not in
   // the other, added or taken away (integers: exactly the sums scored afresh). Taken where
   // fewer than the patch's own hits.
@@ -311,7 +312,7 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
   return Decide(
       n, vacated, half,
       [&](const CellIndex& d) {
-        return scores[static_cast<std::size_t>((d.iy + half) * side + d.ix + half)];
+        return int{scores[static_cast<std::size_t>((d.iy + half) * side + d.ix + half)]};
       },
       options);
 }

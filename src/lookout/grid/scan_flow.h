@@ -50,6 +50,8 @@ namespace lookout::grid {
 
 // The widest patch, cells either side of the cell (ScanFlowOptions::patch_half_cells).
 inline constexpr int kMaxPatchHalfCells = 8;
+static_assert(2 * (2 * kMaxPatchHalfCells + 1) * (2 * kMaxPatchHalfCells + 1) <= 32767,
+              "PatchScoreCache's 16-bit scores");
 
 struct ScanFlowOptions {
   // Off: every cell without a trusted velocity gets the wide window (the grid before
@@ -136,7 +138,10 @@ struct PatchScoreCache {
   const HitMaps* maps = nullptr;
   CellIndex cell;
   int half = -1;
-  std::vector<int> scores;  // doubled scores of the (2 half + 1)^2 displacements, row-major
+  // Doubled scores of the (2 half + 1)^2 displacements, row-major. 16 bits: a score is at most
+  // 2 (2 kMaxPatchHalfCells + 1)^2 = 578, and a row of them is summed eight to an SSE2
+  // instruction where 32-bit sums took four, each after two widenings of the map's bytes.
+  std::vector<std::int16_t> scores;
 };
 
 // The measurement above, over one baseline, for the window-local cell `cell`, displacements
