@@ -176,10 +176,27 @@ void HitMaps::Reset(int width_cells, int height_cells) {
   before_near.assign(n, 0);
   now.assign(n, 0);
   free_now.assign(n, 0);
+  hit_cells.clear();
+}
+
+void HitMaps::ClearHits() {
+  for (const std::uint32_t i : hit_cells) {
+    const auto ix = static_cast<int>(i % static_cast<std::uint32_t>(width));
+    const auto iy = static_cast<int>(i / static_cast<std::uint32_t>(width));
+    before[i] = 0;
+    for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, height - 1); ++y) {
+      for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, width - 1); ++x) {
+        before_near[At(x, y)] = 0;
+        now[At(x, y)] = 0;
+      }
+    }
+  }
+  hit_cells.clear();
 }
 
 void HitMaps::AddBefore(int ix, int iy) {
   if (!Inside(ix, iy)) return;
+  hit_cells.push_back(static_cast<std::uint32_t>(At(ix, iy)));
   before[At(ix, iy)] = 1;
   for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, height - 1); ++y) {
     for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, width - 1); ++x) {
@@ -194,6 +211,7 @@ void HitMaps::AddFreeNow(int ix, int iy) {
 
 void HitMaps::AddNow(int ix, int iy) {
   if (!Inside(ix, iy)) return;
+  hit_cells.push_back(static_cast<std::uint32_t>(At(ix, iy)));
   for (int y = iy - 1; y <= iy + 1; ++y) {
     for (int x = ix - 1; x <= ix + 1; ++x) {
       if (!Inside(x, y)) continue;
@@ -361,8 +379,17 @@ void ScanFlow::Prepare(const MeasurementGrid& z) {
   has_long_pair_ = has_pair_ && options_.long_lag_scans > 1 &&
                    static_cast<int>(history_.size()) == options_.long_lag_scans &&
                    z.stamp > history_.front().stamp && z.stamp > history_.back().stamp;
-  maps_.Reset(has_pair_ ? g.width() : 0, has_pair_ ? g.height() : 0);
-  long_maps_.Reset(has_long_pair_ ? g.width() : 0, has_long_pair_ ? g.height() : 0);
+  // The maps of the last cycle emptied where they were marked, when the window's size is the
+  // same (free_now and the long pair's now are rewritten whole below).
+  const auto empty = [](HitMaps& maps, int width, int height) {
+    if (maps.width == width && maps.height == height) {
+      maps.ClearHits();
+    } else {
+      maps.Reset(width, height);
+    }
+  };
+  empty(maps_, has_pair_ ? g.width() : 0, has_pair_ ? g.height() : 0);
+  empty(long_maps_, has_long_pair_ ? g.width() : 0, has_long_pair_ ? g.height() : 0);
   if (!has_pair_) return;
   const auto lay_before = [&](const Scan& scan, HitMaps& maps) {
     for (const CellIndex& global : scan.hits_global) {

@@ -113,6 +113,8 @@ struct HitMaps {
   std::vector<std::uint8_t> before_near;
   std::vector<std::uint8_t> now;
   std::vector<std::uint8_t> free_now;
+  // The cells AddBefore and AddNow marked (row-major indices), for ClearHits.
+  std::vector<std::uint32_t> hit_cells;
 
   // Whether window-local (ix, iy) is on the maps, and its row-major index (precondition:
   // Inside).
@@ -124,6 +126,11 @@ struct HitMaps {
 
   // Empty maps of the given size.
   void Reset(int width_cells, int height_cells);
+  // before, before_near and now empty again, free_now left as it is: the undoing of AddBefore and
+  // AddNow, block by block. Why: a scan pair marks a few thousand of the window's 160,000 cells,
+  // and Reset's pass over the four maps was half the pair's preparation; free_now is rewritten
+  // whole by the one who lays a scan out (ScanFlow::Prepare).
+  void ClearHits();
   // Marks a hit of the previous / this scan at window-local (ix, iy); outside is ignored.
   void AddBefore(int ix, int iy);
   void AddNow(int ix, int iy);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lookout/core/input_error.h"
@@ -321,25 +322,68 @@ TEST(ScanFlowTest, PrepareLaysTheScanOnTheWindowWhereverItScrolled) {
       return z;
     };
     ScanFlow flow(options);
-    flow.Remember(random_scan(1));
-    flow.Remember(random_scan(2));
-    const MeasurementGrid z = random_scan(3);
-    flow.Prepare(z);
-    // The maps by their definition, from each touched cell's window coordinates.
-    HitMaps expected;
-    expected.Reset(g.width(), g.height());
-    for (const std::size_t s : z.touched) {
-      const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(s));
-      if (z.p_occupied[s] > 0.5f) expected.AddNow(local.ix, local.iy);
-      if (z.p_occupied[s] < 0.5f) expected.AddFreeNow(local.ix, local.iy);
+    std::vector<MeasurementGrid> scans = {random_scan(1), random_scan(2)};
+    flow.Remember(scans[0]);
+    flow.Remember(scans[1]);
+    // Cycle after cycle on one ScanFlow: each cycle's maps are emptied only where the last
+    // cycle's marked them (HitMaps::ClearHits); no mark may survive into the next.
+    for (TimeNs stamp = 3; stamp <= 6; ++stamp) {
+      const MeasurementGrid& z = scans.emplace_back(random_scan(stamp));
+      flow.Prepare(z);
+      // The maps by their definition, from each touched cell's window coordinates.
+      const auto laid = [&](const MeasurementGrid& before) {
+        HitMaps expected;
+        expected.Reset(g.width(), g.height());
+        for (const std::size_t s : before.touched) {
+          const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(s));
+          if (before.p_occupied[s] > 0.5f) expected.AddBefore(local.ix, local.iy);
+        }
+        for (const std::size_t s : z.touched) {
+          const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(s));
+          if (z.p_occupied[s] > 0.5f) expected.AddNow(local.ix, local.iy);
+          if (z.p_occupied[s] < 0.5f) expected.AddFreeNow(local.ix, local.iy);
+        }
+        return expected;
+      };
+      ASSERT_NE(flow.long_pair(), nullptr);
+      const std::size_t k = scans.size() - 1;
+      const std::array<std::pair<const HitMaps*, HitMaps>, 2> pairs = {
+          std::pair{&flow.short_pair(), laid(scans[k - 1])},
+          std::pair{flow.long_pair(), laid(scans[k - 2])}};
+      for (const auto& [maps, expected] : pairs) {
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", origin " + std::to_string(origin.ix) +
+                     " " + std::to_string(origin.iy) + ", cycle " + std::to_string(stamp));
+        EXPECT_EQ(maps->now, expected.now);
+        EXPECT_EQ(maps->free_now, expected.free_now);
+        EXPECT_EQ(maps->before, expected.before);
+        EXPECT_EQ(maps->before_near, expected.before_near);
+      }
+      flow.Remember(z);
     }
-    ASSERT_NE(flow.long_pair(), nullptr);
-    for (const HitMaps* maps : {&flow.short_pair(), flow.long_pair()}) {
-      EXPECT_EQ(maps->now, expected.now)
-          << "seed " << seed << ", origin " << origin.ix << " " << origin.iy;
-      EXPECT_EQ(maps->free_now, expected.free_now)
-          << "seed " << seed << ", origin " << origin.ix << " " << origin.iy;
+  }
+}
+
+// ClearHits undoes AddBefore and AddNow wherever they marked, edges and corners among them,
+// and leaves free_now as it was.
+TEST(ScanFlowTest, ClearHitsEmptiesWhatTheHitsMarked) {
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    HitMaps m;
+    m.Reset(37, 23);
+    std::uniform_int_distribution<int> x(-2, m.width + 1), y(-2, m.height + 1);
+    for (int k = 0; k < 60; ++k) {
+      m.AddBefore(x(rng), y(rng));
+      m.AddNow(x(rng), y(rng));
+      m.AddFreeNow(x(rng), y(rng));
     }
+    const std::vector<std::uint8_t> free_now = m.free_now;
+    m.ClearHits();
+    const std::vector<std::uint8_t> zero(m.before.size(), 0);
+    EXPECT_EQ(m.before, zero);
+    EXPECT_EQ(m.before_near, zero);
+    EXPECT_EQ(m.now, zero);
+    EXPECT_EQ(m.free_now, free_now);
   }
 }
 
