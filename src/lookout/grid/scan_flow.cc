@@ -228,29 +228,40 @@ namespace {
 // hit's displacements along dx are contiguous, so a row of scores takes a row of the map in one
 // vectorised sum (a gather per hit and displacement before: docs/PERFORMANCE.md, "The scan
 // pair's patch scores"). A displacement that takes the hit out of the window scores
-// OutsideScore.
+// OutsideScore, which is 0 but for the cells next to the window's edge (x or y at -1, or at the
+// width or height): only those are looked at, so a hit near the edge costs what one inside does
+// (cell by cell, with a bounds check each, the window's edges took a third of the measurement).
 void AddHitScores(const HitMaps& maps, int x, int y, int half, int sign, std::int16_t* scores) {
   const int side = 2 * half + 1;
   const int x0 = x - half;
-  const bool row_inside = x0 >= 0 && x + half < maps.width;
+  // The row's window columns [lo, hi) and its offsets at x = -1 and x = width (-1: none).
+  const int lo = std::clamp(-x0, 0, side);
+  const int hi = std::clamp(maps.width - x0, 0, side);
+  const int left = -1 - x0 >= 0 && -1 - x0 < side ? -1 - x0 : -1;
+  const int right = maps.width - x0 >= 0 && maps.width - x0 < side ? maps.width - x0 : -1;
+  const auto add_outside = [&](std::int16_t* row, int i, int row_y) {
+    row[i] = static_cast<std::int16_t>(row[i] + sign * OutsideScore(maps, x0 + i, row_y));
+  };
   for (int dy = -half; dy <= half; ++dy) {
     const int row_y = y + dy;
+    if (row_y < -1 || row_y > maps.height) continue;  // no hit within a cell of it
     std::int16_t* row = &scores[static_cast<std::size_t>((dy + half) * side)];
-    if (row_inside && row_y >= 0 && row_y < maps.height) {
-      const std::uint8_t* now = &maps.now[maps.At(x0, row_y)];
-      if (sign > 0) {
-        for (int i = 0; i < side; ++i) row[i] = static_cast<std::int16_t>(row[i] + now[i]);
-      } else {
-        for (int i = 0; i < side; ++i) row[i] = static_cast<std::int16_t>(row[i] - now[i]);
-      }
+    if (row_y == -1 || row_y == maps.height) {  // the row next to the window's top or bottom
+      for (int i = std::max(lo - 1, 0); i < std::min(hi + 1, side); ++i) add_outside(row, i, row_y);
       continue;
     }
-    for (int i = 0; i < side; ++i) {
-      const int row_x = x0 + i;
-      row[i] = static_cast<std::int16_t>(row[i] + sign * (maps.Inside(row_x, row_y)
-                                                              ? maps.now[maps.At(row_x, row_y)]
-                                                              : OutsideScore(maps, row_x, row_y)));
+    if (lo < hi) {
+      const std::uint8_t* now = &maps.now[maps.At(x0 + lo, row_y)];
+      const int n = hi - lo;
+      std::int16_t* inside = row + lo;
+      if (sign > 0) {
+        for (int i = 0; i < n; ++i) inside[i] = static_cast<std::int16_t>(inside[i] + now[i]);
+      } else {
+        for (int i = 0; i < n; ++i) inside[i] = static_cast<std::int16_t>(inside[i] - now[i]);
+      }
     }
+    if (left >= 0) add_outside(row, left, row_y);
+    if (right >= 0) add_outside(row, right, row_y);
   }
 }
 
