@@ -65,14 +65,16 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
 
   UpdateOccupancy(associations, targets, cells, z, options_, layers_.Values(ids_.occupancy),
                   layers_.Values(ids_.seen));                                              // 5
-  UpdateVelocity(associations, targets, cells, dt_s, geometry().cell_size_m(), options_, z,
+  // Velocity and links are carried only where mass moved (MovedCells).
+  const std::span<const UpdateCell> moved = MovedCells(cells);
+  UpdateVelocity(associations, targets, moved, dt_s, geometry().cell_size_m(), options_, z,
                  layers_.Values(ids_.occupancy), layers_.Values(ids_.seen),
                  VelocityLayers{layers_.Values(ids_.velocity_x_mps),
                                 layers_.Values(ids_.velocity_y_mps),
                                 layers_.Values(ids_.velocity_confidence)});                // 6
   std::array<std::span<float>, kNeighbourCount> rigidity;
   for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d] = layers_.Values(ids_.rigidity[d]);
-  UpdateRigidity(associations, targets, cells, indexer, workspace_, rigidity);             // 7
+  UpdateRigidity(associations, targets, moved, indexer, workspace_, rigidity);             // 7
   // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
   const ClusterStageOutput found = ApplyClusterMotion(
       layers_, ids_, z, flow_, dt_s, options_.known_confidence, options_.cluster_motion, hits_now);

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <span>
 #include <vector>
 
 #include "lookout/core/grid_geometry.h"
@@ -257,6 +258,15 @@ struct UpdateCell {
 std::vector<UpdateCell> BuildUpdateList(const TargetIndex& targets,
                                         const Associations& associations, const MeasurementGrid& z,
                                         FilterWorkspace& workspace);
+// The update list's targets and other sources (its first part): the cells some mass moved into
+// or out of. The cells after them only have evidence: the carried attributes (velocity, links)
+// leave them as they are, and their passes stop here (two thirds of the junction's cells).
+inline std::span<const UpdateCell> MovedCells(const std::vector<UpdateCell>& cells) {
+  const auto end = std::partition_point(cells.begin(), cells.end(), [](const UpdateCell& c) {
+    return c.target_slot != FilterWorkspace::kNone || c.source != FilterWorkspace::kNone;
+  });
+  return {cells.data(), static_cast<std::size_t>(end - cells.begin())};
+}
 
 // The weighted mean over the contributions w_ji = P(j -> i) O(j) that one target gathers, of a
 // per-source quantity: the carrying rule of every per-cell attribute (velocity, class, links).

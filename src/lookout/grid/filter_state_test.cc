@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lookout/core/random.h"
@@ -74,6 +75,55 @@ TEST(TargetIndexTest, IsTheDefinitionOnRandomEntries) {
     // The workspace is left as it was found.
     for (const std::uint32_t slot : workspace.slot_of_cell) {
       ASSERT_EQ(slot, FilterWorkspace::kNone) << "seed " << seed << " trial " << trial;
+    }
+  }
+}
+
+// The update list holds each target, source and evidence cell once, and MovedCells is exactly
+// its cells that are a target or a source (the carried attributes' passes stop after them).
+TEST(UpdateListTest, MovedCellsAreTheTargetsAndTheSources) {
+  const std::uint64_t seed = 7211;
+  Rng rng(seed);
+  constexpr std::size_t kCells = 300;
+  FilterWorkspace workspace;
+  workspace.Resize(kCells);
+  for (int trial = 0; trial < 100; ++trial) {
+    Associations a;
+    std::vector<char> is_source(kCells, 0);
+    for (std::size_t cell = 0; cell < kCells; ++cell) {
+      if (!rng.Bernoulli(0.05)) continue;
+      a.source.push_back(cell);
+      is_source[cell] = 1;
+    }
+    std::vector<char> is_target(kCells, 0);
+    for (std::size_t e = rng.UniformIndex(200); e > 0; --e) {
+      const std::size_t cell = rng.UniformIndex(kCells);
+      a.target.push_back(static_cast<std::int64_t>(cell));
+      is_target[cell] = 1;
+    }
+    MeasurementGrid z;
+    z.p_occupied.assign(kCells, 0.5f);
+    for (std::size_t cell = 0; cell < kCells; ++cell) {
+      if (!rng.Bernoulli(0.3)) continue;
+      z.p_occupied[cell] = 0.3f;
+      z.touched.push_back(cell);
+    }
+    MapSources(a, workspace);
+    const TargetIndex targets = BuildTargetIndex(a, workspace);
+    const std::vector<UpdateCell> cells = BuildUpdateList(targets, a, z, workspace);
+    ClearSourceMap(a, workspace);
+    const std::span<const UpdateCell> moved = MovedCells(cells);
+    std::vector<int> listed(kCells, 0);
+    for (std::size_t u = 0; u < cells.size(); ++u) {
+      const std::size_t cell = cells[u].cell;
+      ++listed[cell];
+      ASSERT_EQ(u < moved.size(), is_source[cell] || is_target[cell])
+          << "seed " << seed << " trial " << trial << " cell " << cell;
+    }
+    for (std::size_t cell = 0; cell < kCells; ++cell) {
+      const bool evidence = z.p_occupied[cell] != 0.5f;
+      ASSERT_EQ(listed[cell], is_source[cell] || is_target[cell] || evidence ? 1 : 0)
+          << "seed " << seed << " trial " << trial << " cell " << cell;
     }
   }
 }

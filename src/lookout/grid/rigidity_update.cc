@@ -81,7 +81,7 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
 }
 
 void UpdateRigidity(const Associations& a, const TargetIndex& targets,
-                    const std::vector<UpdateCell>& cells, const WindowIndexer& indexer,
+                    std::span<const UpdateCell> cells, const WindowIndexer& indexer,
                     const FilterWorkspace& workspace,
                     const std::array<std::span<float>, kNeighbourCount>& rigidity) {
   const std::vector<float> links = ComputeRigidityLinks(a, indexer, workspace);

@@ -25,9 +25,10 @@ std::vector<float> ComputeRigidityLinks(const Associations& associations,
                                         const FilterWorkspace& workspace);
 
 // Computes the links and carries them to the update cells of `rigidity` (one layer per
-// direction). A source that received nothing loses its links.
+// direction). A source that received nothing loses its links. `cells`: the update list, or its
+// MovedCells (the others keep their links).
 void UpdateRigidity(const Associations& associations, const TargetIndex& targets,
-                    const std::vector<UpdateCell>& cells, const WindowIndexer& indexer,
+                    std::span<const UpdateCell> cells, const WindowIndexer& indexer,
                     const FilterWorkspace& workspace,
                     const std::array<std::span<float>, kNeighbourCount>& rigidity);
 

@@ -13,7 +13,7 @@ double SurvivalWeight(double o, double m, const FilterOptions& options) {
 }
 
 void UpdateVelocity(const Associations& a, const TargetIndex& targets,
-                    const std::vector<UpdateCell>& cells, double dt_s, double cell_size_m,
+                    std::span<const UpdateCell> cells, double dt_s, double cell_size_m,
                     const FilterOptions& options, const MeasurementGrid& z,
                     std::span<const float> occupancy, std::span<const float> seen,
                     const VelocityLayers& out) {

@@ -48,9 +48,10 @@ struct VelocityLayers {
   std::span<float> confidence;
 };
 
-// `seen` must already hold S_k (UpdateOccupancy). Parallel over the update cells; deterministic.
+// `seen` must already hold S_k (UpdateOccupancy). `cells`: the update list, or its MovedCells
+// (the others keep their velocity). Parallel over the cells; deterministic.
 void UpdateVelocity(const Associations& associations, const TargetIndex& targets,
-                    const std::vector<UpdateCell>& cells, double dt_s, double cell_size_m,
+                    std::span<const UpdateCell> cells, double dt_s, double cell_size_m,
                     const FilterOptions& options, const MeasurementGrid& z,
                     std::span<const float> occupancy, std::span<const float> seen,
                     const VelocityLayers& out);
