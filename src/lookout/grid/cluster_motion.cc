@@ -381,6 +381,57 @@ void ClusterMotionOptions::Validate(const std::string& source) const {
   RigidClusterOptions(*this).Validate(source);
 }
 
+std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIndex> hits_now,
+                                     const CellIndex& predicted, int search_half) {
+  // Hit by hit and row by row, as the scan flow's patch scores (scan_flow.cc, AddHitScores): the
+  // cells under one hit's offsets along x are a run of the maps, read in one vectorised pass, in
+  // place of a lookup a hit and offset (most of the clusters' stage's instructions). The run
+  // goes the other way to the offsets (the cell is hit - o), so the sums are kept mirrored,
+  // mirrored[r][k] = score(o) at o = (half - k, half - r), and turned round at the end.
+  const int side = 2 * search_half + 1;
+  const auto area = static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
+  std::vector<int> mirrored(area, 0);
+  // Off the maps, a cell scores 1 when a hit of the previous scan lies next to it: only the
+  // cells at x or y = -1 or at the width or height can.
+  const auto off_map = [&](int x, int y) {
+    for (int ny = y - 1; ny <= y + 1; ++ny) {
+      for (int nx = x - 1; nx <= x + 1; ++nx) {
+        if (HitBefore(maps, {nx, ny})) return 1;
+      }
+    }
+    return 0;
+  };
+  for (const CellIndex& h : hits_now) {
+    const int x0 = h.ix - predicted.ix - search_half;  // the cell under k = 0
+    const int y0 = h.iy - predicted.iy - search_half;
+    const int lo = std::clamp(-x0, 0, side);
+    const int hi = std::clamp(maps.width - x0, 0, side);
+    for (int r = 0; r < side; ++r) {
+      const int y = y0 + r;
+      if (y < -1 || y > maps.height) continue;
+      int* row = &mirrored[static_cast<std::size_t>(r * side)];
+      if (y == -1 || y == maps.height) {
+        for (int k = std::max(lo - 1, 0); k < std::min(hi + 1, side); ++k) {
+          row[k] += off_map(x0 + k, y);
+        }
+        continue;
+      }
+      if (lo < hi) {
+        // AddBefore marks before_near wherever it marks before: their sum is 2, 1 or 0.
+        const std::uint8_t* before = &maps.before[maps.At(x0 + lo, y)];
+        const std::uint8_t* near = &maps.before_near[maps.At(x0 + lo, y)];
+        int* out = row + lo;
+        for (int k = 0; k < hi - lo; ++k) out[k] += before[k] + near[k];
+      }
+      if (lo > 0 && lo - 1 < side) row[lo - 1] += off_map(x0 + lo - 1, y);
+      if (hi < side && hi >= 0 && x0 + hi == maps.width) row[hi] += off_map(x0 + hi, y);
+    }
+  }
+  std::vector<int> scores(area);
+  for (std::size_t i = 0; i < area; ++i) scores[i] = mirrored[area - 1 - i];
+  return scores;
+}
+
 ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,
                                    const CellIndex& predicted, int search_half,
                                    const ClusterMotionOptions& options) {
@@ -389,8 +440,8 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
   if (out.hits < options.min_hits || maps.width == 0) return out;
   const int side = 2 * search_half + 1;
   // Doubled scores (integral) of the offsets from `predicted`, row-major.
-  std::vector<int> scores(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0);
-  const auto score = [&](int ox, int oy) -> int& {
+  const std::vector<int> scores = ClusterMotionScores(maps, hits_now, predicted, search_half);
+  const auto score = [&](int ox, int oy) {
     return scores[static_cast<std::size_t>((oy + search_half) * side + ox + search_half)];
   };
   const auto length2 = [&](int ox, int oy) {
@@ -401,8 +452,7 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
   CellIndex best{0, 0};  // offset from `predicted`
   for (int oy = -search_half; oy <= search_half; ++oy) {
     for (int ox = -search_half; ox <= search_half; ++ox) {
-      const int s = ScoreOf(maps, hits_now, predicted.ix + ox, predicted.iy + oy);
-      score(ox, oy) = s;
+      const int s = score(ox, oy);
       if (s > best_score || (s == best_score && length2(ox, oy) < length2(best.ix, best.iy))) {
         best_score = s;
         best = {ox, oy};

@@ -199,6 +199,12 @@ struct ClusterMotion {
   double score = 0.0;  // score(best)
 };
 
+// The doubled scores the measurement ranks, score(predicted + o) for the offsets o within
+// +-search_half, row-major from (-search_half, -search_half): each hit now explained by the
+// baseline's scan at hit - predicted - o, 2 for a hit there, 1 for a hit next to it. Pure.
+std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIndex> hits_now,
+                                     const CellIndex& predicted, int search_half);
+
 // The measurement above: `hits_now` against `maps.before` (HitMaps' window-local cells),
 // displacements within +-search_half of `predicted`. Pure.
 ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,

@@ -4,8 +4,10 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "lookout/core/input_error.h"
@@ -41,6 +43,46 @@ std::vector<CellIndex> CarOutlineCells() {
   for (int x = 20; x < 32; ++x) l.push_back({x, 20});
   for (int y = 21; y < 27; ++y) l.push_back({20, y});
   return l;
+}
+
+// The scores against their definition, every offset of every search: random previous hits on a
+// small map, and hits now anywhere near it, so that many offsets take a hit off the map (where
+// only a previous hit next to it scores).
+TEST(MeasureClusterMotionTest, ScoresAreTheDefinition) {
+  const std::uint64_t seed = 7301;
+  std::mt19937_64 rng(seed);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::uniform_int_distribution<int> width(1, 30), height(1, 30);
+    HitMaps maps;
+    maps.Reset(width(rng), height(rng));
+    std::uniform_int_distribution<int> x(-1, maps.width), y(-1, maps.height);
+    for (int k = static_cast<int>(rng() % 40); k > 0; --k) maps.AddBefore(x(rng), y(rng));
+    std::uniform_int_distribution<int> hx(-8, maps.width + 8), hy(-8, maps.height + 8);
+    std::vector<CellIndex> hits;
+    for (int k = 1 + static_cast<int>(rng() % 12); k > 0; --k) hits.push_back({hx(rng), hy(rng)});
+    const CellIndex predicted{static_cast<int>(rng() % 7) - 3, static_cast<int>(rng() % 7) - 3};
+    const int half = 1 + static_cast<int>(rng() % 6);
+    const std::vector<int> scores = ClusterMotionScores(maps, hits, predicted, half);
+    const int side = 2 * half + 1;
+    const auto before_at = [&](int cx, int cy) {
+      return maps.Inside(cx, cy) && maps.before[maps.At(cx, cy)] != 0;
+    };
+    for (int oy = -half; oy <= half; ++oy) {
+      for (int ox = -half; ox <= half; ++ox) {
+        int expected = 0;
+        for (const CellIndex& h : hits) {
+          const int cx = h.ix - predicted.ix - ox, cy = h.iy - predicted.iy - oy;
+          bool next_to = false;
+          for (int ny = cy - 1; ny <= cy + 1; ++ny) {
+            for (int nx = cx - 1; nx <= cx + 1; ++nx) next_to = next_to || before_at(nx, ny);
+          }
+          expected += before_at(cx, cy) ? 2 : (next_to ? 1 : 0);
+        }
+        ASSERT_EQ(scores[static_cast<std::size_t>((oy + half) * side + ox + half)], expected)
+            << "seed " << seed << " trial " << trial << " offset " << ox << ", " << oy;
+      }
+    }
+  }
 }
 
 TEST(MeasureClusterMotionTest, AnLMovedByWholeCellsIsMeasuredAtItsDisplacement) {
