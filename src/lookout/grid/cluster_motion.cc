@@ -489,20 +489,26 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
                                       double known_confidence,
                                       const ClusterMotionOptions& options) {
   const std::vector<std::size_t> hits_now = CountHitScans(z, layers.Values(ids.hit_scans));
-  return ApplyClusterMotion(layers, ids, z, flow, dt_s, known_confidence, options, hits_now);
+  return ApplyClusterMotion(layers, ids, z, flow, dt_s, known_confidence, options, hits_now,
+                            ClusterMotionMask(layers, ids, options));
+}
+
+std::vector<std::uint8_t> ClusterMotionMask(const GridLayers& layers, const FilterLayerIds& ids,
+                                            const ClusterMotionOptions& options) {
+  return DynamicCellMask(layers, ids, RigidClusterOptions(options));
 }
 
 ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
                                       const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
                                       double known_confidence, const ClusterMotionOptions& options,
-                                      std::span<const std::size_t> hits_now) {
+                                      std::span<const std::size_t> hits_now,
+                                      const std::vector<std::uint8_t>& dynamic) {
   const std::span<float> hit_scans = layers.Values(ids.hit_scans);
   ClusterStageOutput out;
   std::vector<MeasuredBody>& measured = out.measured;
   if (!options.enabled || !flow.HasPair()) return out;
   const GridObjectOptions cluster_options = RigidClusterOptions(options);
-  std::vector<GridCluster> clusters = FindRigidClusters(
-      layers, ids, DynamicCellMask(layers, ids, cluster_options), cluster_options);
+  std::vector<GridCluster> clusters = FindRigidClusters(layers, ids, dynamic, cluster_options);
   const ScrollingGridGeometry& g = layers.geometry();
   const std::span<float> occupancy = layers.Values(ids.occupancy);
   const std::span<float> vx = layers.Values(ids.velocity_x_mps);

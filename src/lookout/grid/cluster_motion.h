@@ -47,6 +47,7 @@
 //
 // Deterministic: clusters in window order, one thread.
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -241,11 +242,18 @@ struct ClusterStageOutput {
 ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
                                       const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
                                       double known_confidence, const ClusterMotionOptions& options);
-// The same with the hit counts already taken: `hits_now` is CountHitScans of z on the layers'
-// hit_scans (the update takes them beside the scan pair's preparation, a serial pass too).
+// The stage's dynamic cells: DynamicCellMask (grid_objects.h) with the stage's thresholds. It
+// reads only the occupancy, velocity and confidence layers.
+std::vector<std::uint8_t> ClusterMotionMask(const GridLayers& layers, const FilterLayerIds& ids,
+                                            const ClusterMotionOptions& options);
+// The same with its two serial passes over the window already taken, each beside a stage that
+// does not touch what it reads: `hits_now` is CountHitScans of z on the layers' hit_scans (the
+// update takes them beside the scan pair's preparation), `dynamic` ClusterMotionMask of the
+// layers as the stage finds them (beside the rigidity links).
 ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
                                       const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
                                       double known_confidence, const ClusterMotionOptions& options,
-                                      std::span<const std::size_t> hits_now);
+                                      std::span<const std::size_t> hits_now,
+                                      const std::vector<std::uint8_t>& dynamic);
 
 }  // namespace lookout::grid

@@ -74,10 +74,20 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
                                 layers_.Values(ids_.velocity_confidence)});                // 6
   std::array<std::span<float>, kNeighbourCount> rigidity;
   for (std::size_t d = 0; d < kNeighbourCount; ++d) rigidity[d] = layers_.Values(ids_.rigidity[d]);
-  UpdateRigidity(associations, targets, moved, indexer, workspace_, rigidity);             // 7
+  // The clusters' dynamic cells, a serial pass over the window, beside the links: it reads no
+  // rigidity layer.
+  std::vector<std::uint8_t> dynamic;
+  tbb::parallel_invoke(
+      [&] { UpdateRigidity(associations, targets, moved, indexer, workspace_, rigidity); },  // 7
+      [&] {
+        if (options_.cluster_motion.enabled && flow_.HasPair()) {
+          dynamic = ClusterMotionMask(layers_, ids_, options_.cluster_motion);
+        }
+      });
   // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
-  const ClusterStageOutput found = ApplyClusterMotion(
-      layers_, ids_, z, flow_, dt_s, options_.known_confidence, options_.cluster_motion, hits_now);
+  const ClusterStageOutput found =
+      ApplyClusterMotion(layers_, ids_, z, flow_, dt_s, options_.known_confidence,
+                         options_.cluster_motion, hits_now, dynamic);
   const Clock::time_point motion_done = Clock::now();
   // Beyond the paper: the bodies going into a shadow remembered, those in one carried whole
   // (hidden_bodies.h).
