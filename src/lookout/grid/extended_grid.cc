@@ -52,12 +52,13 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   WeightByMeasurement(z, associations);                                                    // 3
   MapSources(associations, workspace_);
   // The target index and the update list are serial passes: each runs on one thread beside a
-  // parallel stage that does not read it (the rigidity blur reads only Pw; the constraints read
-  // no update list), whose blocks go to whichever thread is free.
+  // parallel stage that does not read it (the rigidity blur reads Pw and the source map; the
+  // constraints read no update list), whose blocks go to whichever thread is free.
   TargetIndex targets;
   RigidityBlur blur;
-  tbb::parallel_invoke([&] { targets = BuildTargetIndex(associations, workspace_); },
-                       [&] { blur = BlurForRigidity(associations, options_); });
+  tbb::parallel_invoke(
+      [&] { targets = BuildTargetIndex(associations, workspace_); },
+      [&] { blur = BlurForRigidity(associations, indexer, workspace_, options_); });
   std::vector<UpdateCell> cells;
   tbb::parallel_invoke(
       [&] { cells = BuildUpdateList(targets, associations, z, workspace_); },

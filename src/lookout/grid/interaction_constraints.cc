@@ -30,6 +30,13 @@ DisplacementMoments MomentsOf(const Associations& a, std::size_t s) {
   return m;
 }
 
+// The strength of source s's rigidity link in direction d in eq. 11: min(1, gain D(s, y)).
+double LinkStrength(const Associations& a, const FilterOptions& options, std::size_t s,
+                    std::size_t d) {
+  return std::min(
+      1.0, options.rigidity_link_gain * static_cast<double>(a.rigidity[s * kNeighbourCount + d]));
+}
+
 // exp(-delta^2 / (2 r^2)) for integer offsets delta = 0, 1, ...: every displacement is whole
 // cells, so the rigidity kernel's 1-D factors are table reads (the same values as the exp).
 std::vector<double> IntegerKernel(double r2, int max_offset) {
@@ -108,7 +115,8 @@ void BlurLattice(const float* p, const double* kernel, std::size_t any_n, float*
 
 }  // namespace
 
-RigidityBlur BlurForRigidity(const Associations& a, const FilterOptions& options) {
+RigidityBlur BlurForRigidity(const Associations& a, const WindowIndexer& indexer,
+                             const FilterWorkspace& workspace, const FilterOptions& options) {
   // Each source's Pw blurred by the rigidity kernel on its own window lattice:
   // B_y(a) = sum_a' Pw(y moves by a') K(a - a'), separable (K is a product of two 1-D Gaussians),
   // O(M^3) per source. A linked neighbour whose window has the same lattice as the cell's enters
@@ -152,10 +160,27 @@ RigidityBlur BlurForRigidity(const Associations& a, const FilterOptions& options
       }
     }
   }
+  constexpr std::size_t kHalf = kNeighbourCount / 2;  // d and d + kHalf are opposite
   ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
-      if (!exact) moments[s] = MomentsOf(a, s);
       const SearchWindow& w = a.window[s];
+      // Only what some cell's constraint reads (ApplyConstraints): s's B_y where a neighbour
+      // with s's lattice links to it, its moments where one with another lattice does. Why: no
+      // one links to most newly seen occupancy (37 of the junction's 85 wide windows, the
+      // costliest blurs), and links across two lattices are few (124 of 824 sources read).
+      bool blur_read = false, moments_read = false;
+      for (std::size_t d = 0; d < kNeighbourCount; ++d) {
+        const std::uint32_t x = LinkedSource(a, indexer, workspace, s, d);
+        if (x == FilterWorkspace::kNone ||
+            LinkStrength(a, options, x, (d + kHalf) % kNeighbourCount) <= 0.0) {
+          continue;
+        }
+        const bool same_lattice = exact || a.window[x].SameEntries(w);
+        blur_read = blur_read || same_lattice;
+        moments_read = moments_read || !same_lattice;
+      }
+      if (moments_read) moments[s] = MomentsOf(a, s);
+      if (!blur_read) continue;
       const auto n = static_cast<std::size_t>(w.size());
       const std::vector<double>& kernel =
           std::find_if(tables.begin(), tables.end(), [&](const KernelTable& t) {
@@ -248,9 +273,7 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
       std::size_t link_count = 0;
       if (options.enable_rigidity_constraint) {
         for (std::size_t d = 0; d < kNeighbourCount; ++d) {
-          const double strength =
-              std::min(1.0, options.rigidity_link_gain *
-                                static_cast<double>(a.rigidity[s * kNeighbourCount + d]));
+          const double strength = LinkStrength(a, options, s, d);
           if (strength <= 0.0) continue;
           const std::uint32_t y = LinkedSource(a, indexer, workspace, s, d);
           if (y == FilterWorkspace::kNone) continue;

@@ -49,10 +49,13 @@ struct RigidityBlur {
   std::vector<double> integer_kernel;  // K's 1-D factor at whole-cell offsets 0, 1, ...
 };
 
-// B_y and the moments of every source, from Pw (the weights after step 3). Why apart from
-// ApplyConstraints: it reads neither the target index nor the workspace, so the update runs it
-// beside the serial passes that build them. Parallel over sources; deterministic.
-RigidityBlur BlurForRigidity(const Associations& associations, const FilterOptions& options);
+// B_y and the moments of the sources ApplyConstraints reads them of (a source some neighbour
+// links to), from Pw (the weights after step 3); the others' are left 0. Why apart from
+// ApplyConstraints: it reads neither the target index nor the update list, so the update runs it
+// beside the serial passes that build them. `workspace.source_of_cell` must map the sources
+// (MapSources). Parallel over sources; deterministic.
+RigidityBlur BlurForRigidity(const Associations& associations, const WindowIndexer& indexer,
+                             const FilterWorkspace& workspace, const FilterOptions& options);
 
 // Replaces associations.weight (Pw) by P of eq. 11. `workspace.source_of_cell` must map the
 // sources (MapSources); `blur` is BlurForRigidity of the same Pw. Parallel over targets, then
