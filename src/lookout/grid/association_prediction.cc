@@ -212,31 +212,31 @@ void PredictFromSources(const WindowIndexer& indexer, double dt_s, double cell_s
       const std::size_t first = a.first_entry[s];
       // The lattice row by row: a column's storage offset found once, not once an entry.
       const int n = w.size();
-      std::array<std::int64_t, kMaxWindowSideCells> column;  // kOutsideWindow: off the window
+      std::array<EntryTarget, kMaxWindowSideCells> column;  // kOutsideWindow: off the window
       for (int u = 0; u < n; ++u) {
         const int tx = from.ix + w.center.ix + w.stride * (u - w.half);
         column[static_cast<std::size_t>(u)] =
-            tx >= 0 && tx < indexer.width() ? static_cast<std::int64_t>(indexer.ColumnStorage(tx))
+            tx >= 0 && tx < indexer.width() ? static_cast<EntryTarget>(indexer.ColumnStorage(tx))
                                             : kOutsideWindow;
       }
-      std::int64_t* target = &a.target[first];
+      EntryTarget* target = &a.target[first];
       for (int v = 0; v < n; ++v) {
         const int ty = from.iy + w.center.iy + w.stride * (v - w.half);
-        std::int64_t* row = target + static_cast<std::ptrdiff_t>(v) * n;
+        EntryTarget* row = target + static_cast<std::ptrdiff_t>(v) * n;
         if (ty < 0 || ty >= indexer.height()) {
           std::fill_n(row, n, kOutsideWindow);
           continue;
         }
-        const auto base = static_cast<std::int64_t>(indexer.RowStorage(ty));
+        const auto base = static_cast<EntryTarget>(indexer.RowStorage(ty));
         for (int u = 0; u < n; ++u) {
-          const std::int64_t c = column[static_cast<std::size_t>(u)];
+          const EntryTarget c = column[static_cast<std::size_t>(u)];
           row[u] = c == kOutsideWindow ? kOutsideWindow : base + c;
         }
       }
       w.ForEachDenseOffset([&](std::size_t k, const CellIndex& o) {
         const int tx = from.ix + w.center.ix + o.ix;
         const int ty = from.iy + w.center.iy + o.iy;
-        target[k] = indexer.Inside(tx, ty) ? static_cast<std::int64_t>(indexer.Storage(tx, ty))
+        target[k] = indexer.Inside(tx, ty) ? static_cast<EntryTarget>(indexer.Storage(tx, ty))
                                            : kOutsideWindow;
       });
       std::fill_n(&a.entry_source[first], w.EntryCount(), static_cast<std::uint32_t>(s));

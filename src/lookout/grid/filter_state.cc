@@ -143,7 +143,7 @@ TargetIndex BuildTargetIndex(const Associations& associations, FilterWorkspace& 
   TargetIndex index;
   constexpr std::uint32_t kNone = FilterWorkspace::kNone;
   const std::size_t entries = associations.EntryCount();
-  const std::int64_t* const target = associations.target.data();
+  const EntryTarget* const target = associations.target.data();
   std::uint32_t* const slot_of_cell = workspace.slot_of_cell.data();
   std::vector<std::uint32_t> slot_of_entry(entries);
   std::uint32_t* const entry_slot = slot_of_entry.data();
@@ -153,7 +153,7 @@ TargetIndex BuildTargetIndex(const Associations& associations, FilterWorkspace& 
   std::vector<std::uint32_t> counts(entries, 0);
   std::uint32_t slots_used = 0;
   for (std::size_t e = 0; e < entries; ++e) {
-    const std::int64_t t = target[e];
+    const EntryTarget t = target[e];
     if (t == kOutsideWindow) {
       entry_slot[e] = kNone;
       continue;

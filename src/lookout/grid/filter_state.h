@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -23,6 +24,7 @@
 
 #include "lookout/core/grid_geometry.h"
 #include "lookout/grid/filter_options.h"
+#include "lookout/grid/grid_options.h"
 #include "lookout/grid/inverse_sensor_model.h"
 #include "lookout/grid/scrolling_grid.h"
 
@@ -95,7 +97,13 @@ class WindowIndexer {
   std::vector<int> local_y_of_row_;     // storage row -> local y
 };
 
-inline constexpr std::int64_t kOutsideWindow = -1;
+// Entries' targets are 32-bit: half the memory of every pass over the 50,000 entries (their
+// prediction, weighting, index and constraints). A window holds at most kMaxGridSideCells^2
+// cells.
+using EntryTarget = std::int32_t;
+inline constexpr EntryTarget kOutsideWindow = -1;
+static_assert(std::int64_t{kMaxGridSideCells} * kMaxGridSideCells <= INT32_MAX,
+              "a storage index fits an EntryTarget");
 
 // One source's search window (eq. 8): candidate displacements center + stride * (u - half,
 // v - half) for u, v in [0, 2 half], entry k = v * size + u (the lattice), then, when the lattice
@@ -210,7 +218,7 @@ struct Associations {
   std::vector<SearchWindow> window;
   std::vector<std::size_t> first_entry;  // SourceCount() + 1
   // --- per entry (j -> i)
-  std::vector<std::int64_t> target;      // storage index of i, or kOutsideWindow
+  std::vector<EntryTarget> target;       // storage index of i, or kOutsideWindow
   std::vector<std::uint32_t> entry_source;
   std::vector<float> weight;             // P(j -> i), summing to 1 over each source's window
   // The share of P(j -> i) that "stays in place" holds (step 2's mixture, where the prediction

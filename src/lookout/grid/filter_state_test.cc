@@ -65,7 +65,7 @@ TEST(TargetIndexTest, IsTheDefinitionOnRandomEntries) {
     const std::size_t span = 1 + rng.UniformIndex(kCells);
     for (std::size_t e = 0; e < entries; ++e) {
       a.target.push_back(rng.Bernoulli(0.1) ? kOutsideWindow
-                                            : static_cast<std::int64_t>(rng.UniformIndex(span)));
+                                            : static_cast<EntryTarget>(rng.UniformIndex(span)));
     }
     const TargetIndex fast = BuildTargetIndex(a, workspace);
     const TargetIndex literal = LiteralTargetIndex(a);
@@ -98,7 +98,7 @@ TEST(UpdateListTest, MovedCellsAreTheTargetsAndTheSources) {
     std::vector<char> is_target(kCells, 0);
     for (std::size_t e = rng.UniformIndex(200); e > 0; --e) {
       const std::size_t cell = rng.UniformIndex(kCells);
-      a.target.push_back(static_cast<std::int64_t>(cell));
+      a.target.push_back(static_cast<EntryTarget>(cell));
       is_target[cell] = 1;
     }
     MeasurementGrid z;
