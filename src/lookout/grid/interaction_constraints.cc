@@ -363,20 +363,17 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
         }
       }
       double sum = 0.0;
-      for (std::size_t k = 0; k < count; ++k) {
-        constrained[first + k] = static_cast<float>(p[k]);
-        sum += p[k];
-      }
+      for (std::size_t k = 0; k < count; ++k) sum += p[k];
       if (sum <= 0.0) {  // every move forbidden (underflow): keep Pw
-        for (std::size_t k = 0; k < w.EntryCount(); ++k) {
-          constrained[first + k] = a.weight[first + k];
-        }
+        for (std::size_t k = 0; k < count; ++k) constrained[first + k] = a.weight[first + k];
         continue;
       }
+      // Each factor product rounded to the layers' float, then normalised (in one pass: the
+      // same values as storing the product first).
       const double inv_sum = 1.0 / sum;
-      for (std::size_t k = 0; k < w.EntryCount(); ++k) {
+      for (std::size_t k = 0; k < count; ++k) {
         constrained[first + k] =
-            static_cast<float>(static_cast<double>(constrained[first + k]) * inv_sum);
+            static_cast<float>(static_cast<double>(static_cast<float>(p[k])) * inv_sum);
       }
     }
   });
