@@ -223,6 +223,20 @@ void HitMaps::AddNow(int ix, int iy) {
 
 namespace {
 
+// The side of the default search square (ScanFlowOptions::search_half_cells = 12).
+constexpr int kDefaultSearchSide = 25;
+
+// row[i] += sign * now[i] for i < n; N: n known at compile time (0: any).
+template <int N>
+void AddRowScores(const std::uint8_t* now, int any_n, int sign, std::int16_t* row) {
+  const int n = N > 0 ? N : any_n;
+  if (sign > 0) {
+    for (int i = 0; i < n; ++i) row[i] = static_cast<std::int16_t>(row[i] + now[i]);
+  } else {
+    for (int i = 0; i < n; ++i) row[i] = static_cast<std::int16_t>(row[i] - now[i]);
+  }
+}
+
 // Adds `sign` times the scores one previous hit at (x, y) gives every displacement of the search
 // square (side^2 ints, row-major). Hit by hit and row by row: the dilated map's cells under one
 // hit's displacements along dx are contiguous, so a row of scores takes a row of the map in one
@@ -252,12 +266,12 @@ void AddHitScores(const HitMaps& maps, int x, int y, int half, int sign, std::in
     }
     if (lo < hi) {
       const std::uint8_t* now = &maps.now[maps.At(x0 + lo, row_y)];
-      const int n = hi - lo;
-      std::int16_t* inside = row + lo;
-      if (sign > 0) {
-        for (int i = 0; i < n; ++i) inside[i] = static_cast<std::int16_t>(inside[i] + now[i]);
+      // The default search (+-12 cells) over a whole row: its length known at compile time,
+      // the loop unrolls into three vector adds and one more.
+      if (lo == 0 && hi == kDefaultSearchSide) {
+        AddRowScores<kDefaultSearchSide>(now, kDefaultSearchSide, sign, row);
       } else {
-        for (int i = 0; i < n; ++i) inside[i] = static_cast<std::int16_t>(inside[i] - now[i]);
+        AddRowScores<0>(now, hi - lo, sign, row + lo);
       }
     }
     if (left >= 0) add_outside(row, left, row_y);
