@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <type_traits>
 
 #include "lookout/core/input_error.h"
 #include "lookout/grid/filter_state.h"
@@ -352,12 +353,22 @@ FlowMeasurement MeasureFlow(const HitMaps& maps, const CellIndex& cell, int sear
   cache.maps = &maps;
   cache.cell = cell;
   cache.half = half;
-  return Decide(
-      n, vacated, half,
-      [&](const CellIndex& d) {
-        return int{scores[static_cast<std::size_t>((d.iy + half) * side + d.ix + half)]};
-      },
-      options);
+  // The decision's passes over the scores with the default search's size known at compile time
+  // (their loops unroll and vectorise), any other size as it comes.
+  const auto decide = [&](auto known_half) {
+    constexpr int kKnown = decltype(known_half)::value;
+    const int h = kKnown > 0 ? kKnown : half;
+    const int s = 2 * h + 1;
+    return Decide(
+        n, vacated, h,
+        [&](const CellIndex& d) {
+          return int{scores[static_cast<std::size_t>((d.iy + h) * s + d.ix + h)]};
+        },
+        options);
+  };
+  constexpr int kDefaultHalf = (kDefaultSearchSide - 1) / 2;
+  return half == kDefaultHalf ? decide(std::integral_constant<int, kDefaultHalf>{})
+                              : decide(std::integral_constant<int, 0>{});
 }
 
 FlowMeasurement MeasureFlowReference(const HitMaps& maps, const CellIndex& cell,
