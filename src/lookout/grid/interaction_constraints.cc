@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace lookout::grid {
@@ -232,7 +233,9 @@ void ApplyConstraints(const WindowIndexer& indexer, const TargetIndex& targets,
                       const FilterWorkspace& workspace, const FilterOptions& options,
                       const RigidityBlur& blur, Associations& a) {
   // In(i) per entry's target, gathered per target (each entry belongs to one target).
-  std::vector<float> inflow_at_entry(a.EntryCount(), 0.0f);
+  // Read only at the entries whose target is in the window, each of which the gather writes: the
+  // array is left unzeroed (make_unique_for_overwrite).
+  const auto inflow_at_entry = std::make_unique_for_overwrite<float[]>(a.EntryCount());
   if (options.enable_no_convergence_constraint) {
     ParallelForBlocks(targets.targets.size(), 512, [&](std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t) {
