@@ -391,16 +391,8 @@ std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIn
   const int side = 2 * search_half + 1;
   const auto area = static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
   std::vector<int> mirrored(area, 0);
-  // Off the maps, a cell scores 1 when a hit of the previous scan lies next to it: only the
-  // cells at x or y = -1 or at the width or height can.
-  const auto off_map = [&](int x, int y) {
-    for (int ny = y - 1; ny <= y + 1; ++ny) {
-      for (int nx = x - 1; nx <= x + 1; ++nx) {
-        if (HitBefore(maps, {nx, ny})) return 1;
-      }
-    }
-    return 0;
-  };
+  // Off the maps, a cell scores (BeforeScore) only where a hit of the previous scan lies next to
+  // it: only the cells at x or y = -1 or at the width or height are looked at.
   for (const CellIndex& h : hits_now) {
     const int x0 = h.ix - predicted.ix - search_half;  // the cell under k = 0
     const int y0 = h.iy - predicted.iy - search_half;
@@ -412,7 +404,7 @@ std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIn
       int* row = &mirrored[static_cast<std::size_t>(r * side)];
       if (y == -1 || y == maps.height) {
         for (int k = std::max(lo - 1, 0); k < std::min(hi + 1, side); ++k) {
-          row[k] += off_map(x0 + k, y);
+          row[k] += BeforeScore(maps, x0 + k, y);
         }
         continue;
       }
@@ -423,8 +415,8 @@ std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIn
         int* out = row + lo;
         for (int k = 0; k < hi - lo; ++k) out[k] += before[k] + near[k];
       }
-      if (lo > 0 && lo - 1 < side) row[lo - 1] += off_map(x0 + lo - 1, y);
-      if (hi < side && hi >= 0 && x0 + hi == maps.width) row[hi] += off_map(x0 + hi, y);
+      if (lo > 0) row[lo - 1] += BeforeScore(maps, x0 + lo - 1, y);  // x = -1
+      if (hi < side && x0 + hi == maps.width) row[hi] += BeforeScore(maps, maps.width, y);
     }
   }
   std::vector<int> scores(area);

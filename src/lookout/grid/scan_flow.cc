@@ -224,8 +224,8 @@ void HitMaps::AddNow(int ix, int iy) {
 
 namespace {
 
-// The side of the default search square (ScanFlowOptions::search_half_cells = 12).
-constexpr int kDefaultSearchSide = 25;
+// The side of the default search square.
+constexpr int kDefaultSearchSide = 2 * ScanFlowOptions{}.search_half_cells + 1;
 
 // row[i] += sign * now[i] for i < n; N: n known at compile time (0: any).
 template <int N>
@@ -239,8 +239,8 @@ void AddRowScores(const std::uint8_t* now, int any_n, int sign, std::int16_t* ro
 }
 
 // Adds `sign` times the scores one previous hit at (x, y) gives every displacement of the search
-// square (side^2 ints, row-major). Hit by hit and row by row: the dilated map's cells under one
-// hit's displacements along dx are contiguous, so a row of scores takes a row of the map in one
+// square (side^2 16-bit sums, row-major). Hit by hit and row by row: the dilated map's cells under
+// one hit's displacements along dx are contiguous, so a row of scores takes a row of the map in one
 // vectorised sum (a gather per hit and displacement before: docs/PERFORMANCE.md, "The scan
 // pair's patch scores"). A displacement that takes the hit out of the window scores
 // OutsideScore, which is 0 but for the cells next to the window's edge (x or y at -1, or at the
@@ -267,8 +267,8 @@ void AddHitScores(const HitMaps& maps, int x, int y, int half, int sign, std::in
     }
     if (lo < hi) {
       const std::uint8_t* now = &maps.now[maps.At(x0 + lo, row_y)];
-      // The default search (+-12 cells) over a whole row: its length known at compile time,
-      // the loop unrolls into three vector adds and one more.
+      // The default search over a whole row: its length known at compile time, the loop
+      // unrolls (25 sums: three vector adds and one more).
       if (lo == 0 && hi == kDefaultSearchSide) {
         AddRowScores<kDefaultSearchSide>(now, kDefaultSearchSide, sign, row);
       } else {
