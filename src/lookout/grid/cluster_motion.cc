@@ -482,11 +482,22 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
                                       const ClusterMotionOptions& options) {
   const std::vector<std::size_t> hits_now = CountHitScans(z, layers.Values(ids.hit_scans));
   return ApplyClusterMotion(layers, ids, z, flow, dt_s, known_confidence, options, hits_now,
-                            ClusterMotionMask(layers, ids, options));
+                            ClusterMotionMask(layers, ids, flow, options));
 }
 
+namespace {
+
+// Whether the stage does anything this cycle: it needs a scan pair.
+bool ClusterStageRuns(const ScanFlow& flow, const ClusterMotionOptions& options) {
+  return options.enabled && flow.HasPair();
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> ClusterMotionMask(const GridLayers& layers, const FilterLayerIds& ids,
+                                            const ScanFlow& flow,
                                             const ClusterMotionOptions& options) {
+  if (!ClusterStageRuns(flow, options)) return {};
   return DynamicCellMask(layers, ids, RigidClusterOptions(options));
 }
 
@@ -498,7 +509,7 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
   const std::span<float> hit_scans = layers.Values(ids.hit_scans);
   ClusterStageOutput out;
   std::vector<MeasuredBody>& measured = out.measured;
-  if (!options.enabled || !flow.HasPair()) return out;
+  if (!ClusterStageRuns(flow, options)) return out;
   const GridObjectOptions cluster_options = RigidClusterOptions(options);
   std::vector<GridCluster> clusters = FindRigidClusters(layers, ids, dynamic, cluster_options);
   const ScrollingGridGeometry& g = layers.geometry();

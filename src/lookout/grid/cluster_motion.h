@@ -242,9 +242,11 @@ struct ClusterStageOutput {
 ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& ids,
                                       const MeasurementGrid& z, const ScanFlow& flow, double dt_s,
                                       double known_confidence, const ClusterMotionOptions& options);
-// The stage's dynamic cells: DynamicCellMask (grid_objects.h) with the stage's thresholds. It
-// reads only the occupancy, velocity and confidence layers.
+// The stage's dynamic cells: DynamicCellMask (grid_objects.h) with the stage's thresholds; empty
+// when the stage does nothing this cycle (off, or no scan pair in `flow`). It reads only the
+// occupancy, velocity and confidence layers.
 std::vector<std::uint8_t> ClusterMotionMask(const GridLayers& layers, const FilterLayerIds& ids,
+                                            const ScanFlow& flow,
                                             const ClusterMotionOptions& options);
 // The same with its two serial passes over the window already taken, each beside a stage that
 // does not touch what it reads: `hits_now` is CountHitScans of z on the layers' hit_scans (the

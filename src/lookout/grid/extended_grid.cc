@@ -80,11 +80,7 @@ void ExtendedGrid::Update(const MeasurementGrid& z, double dt_s) {
   std::vector<std::uint8_t> dynamic;
   tbb::parallel_invoke(
       [&] { UpdateRigidity(associations, targets, moved, indexer, workspace_, rigidity); },  // 7
-      [&] {
-        if (options_.cluster_motion.enabled && flow_.HasPair()) {
-          dynamic = ClusterMotionMask(layers_, ids_, options_.cluster_motion);
-        }
-      });
+      [&] { dynamic = ClusterMotionMask(layers_, ids_, flow_, options_.cluster_motion); });
   // Beyond the paper: each rigid cluster measured whole (cluster_motion.h).
   const ClusterStageOutput found =
       ApplyClusterMotion(layers_, ids_, z, flow_, dt_s, options_.known_confidence,

@@ -36,6 +36,10 @@ inline constexpr int kNeighbourCount = 8;
 inline constexpr std::array<CellIndex, kNeighbourCount> kNeighbourOffsets = {
     CellIndex{1, 0}, CellIndex{1, 1}, CellIndex{0, 1}, CellIndex{-1, 1},
     CellIndex{-1, 0}, CellIndex{-1, -1}, CellIndex{0, -1}, CellIndex{1, -1}};
+// The direction from the cell at kNeighbourOffsets[d] back to the cell.
+constexpr std::size_t OppositeDirection(std::size_t d) {
+  return (d + kNeighbourCount / 2) % kNeighbourCount;
+}
 
 // The filter's layers in a GridLayers, by name ("occupancy", "velocity_x_mps", ...).
 struct FilterLayerIds {

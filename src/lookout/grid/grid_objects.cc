@@ -133,7 +133,7 @@ std::vector<GridCluster> FindRigidClusters(const GridLayers& layers, const Filte
           if (!indexer.Inside(nx, ny)) continue;
           const std::size_t to = indexer.Storage(nx, ny);
           if (!dynamic[to] || visited[to]) continue;
-          const std::size_t back = (d + kNeighbourCount / 2) % kNeighbourCount;
+          const std::size_t back = OppositeDirection(d);
           const double d_link = std::max(At(link[d], from), At(link[back], to));
           if (!(d_link > options.min_link)) continue;
           visited[to] = 1;

@@ -161,7 +161,6 @@ RigidityBlur BlurForRigidity(const Associations& a, const WindowIndexer& indexer
       }
     }
   }
-  constexpr std::size_t kHalf = kNeighbourCount / 2;  // d and d + kHalf are opposite
   ParallelForBlocks(a.SourceCount(), kSourceBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       const SearchWindow& w = a.window[s];
@@ -173,7 +172,7 @@ RigidityBlur BlurForRigidity(const Associations& a, const WindowIndexer& indexer
       for (std::size_t d = 0; d < kNeighbourCount; ++d) {
         const std::uint32_t x = LinkedSource(a, indexer, workspace, s, d);
         if (x == FilterWorkspace::kNone ||
-            LinkStrength(a, options, x, (d + kHalf) % kNeighbourCount) <= 0.0) {
+            LinkStrength(a, options, x, OppositeDirection(d)) <= 0.0) {
           continue;
         }
         const bool same_lattice = exact || a.window[x].SameEntries(w);

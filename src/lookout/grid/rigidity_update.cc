@@ -73,7 +73,7 @@ std::vector<float> ComputeRigidityLinks(const Associations& a, const WindowIndex
       for (std::size_t d = kHalf; d < kNeighbourCount; ++d) {
         const std::uint32_t y = LinkedSource(a, indexer, workspace, x, d);
         if (y == FilterWorkspace::kNone || !a.window[y].SameEntries(a.window[x])) continue;
-        links[x * kNeighbourCount + d] = links[y * kNeighbourCount + (d - kHalf)];
+        links[x * kNeighbourCount + d] = links[y * kNeighbourCount + OppositeDirection(d)];
       }
     }
   });
