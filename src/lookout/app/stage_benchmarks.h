@@ -40,7 +40,8 @@ GridCycleInput PrepareGridCycle(const sim::Scenario& scenario, double at_s,
 // One grid update on `scenario`'s scan at the first lidar frame at or after `at_s`, the grid
 // having run every earlier scan (a steady state: tracked structure, movers, newly revealed
 // occupancy), the 400 x 400 grid of 0.15 m cells. Each repetition updates a fresh copy of the
-// same state with the same measurement; copying is not timed.
+// same state with the same measurement; copying is not timed. The reference's repetitions run
+// spread among the fast path's (side by side in time).
 GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, int repetitions,
                                   int reference_repetitions);
 
