@@ -90,15 +90,15 @@ GridCycleFigures MeasureGridCycle(const sim::Scenario& scenario, double at_s, in
   // from the same stretch of time. On a shared machine a burst of another tenant's load lasts
   // tens of milliseconds: the fast path's runs all in one block (2 ms each), then the reference's
   // (100 ms each), could each fall in a different machine state.
-  const int every = reference_repetitions > 0 ? std::max(1, repetitions / reference_repetitions)
-                                              : repetitions + 1;
+  const int every = std::max(1, repetitions / std::max(1, reference_repetitions));
+  const auto reference_left = [&] {
+    return static_cast<int>(reference_ms.size()) < reference_repetitions;
+  };
   for (int r = 0; r < repetitions; ++r) {
     time_fast_path();
-    if ((r + 1) % every == 0 && static_cast<int>(reference_ms.size()) < reference_repetitions) {
-      time_reference();
-    }
+    if ((r + 1) % every == 0 && reference_left()) time_reference();
   }
-  while (static_cast<int>(reference_ms.size()) < reference_repetitions) time_reference();
+  while (reference_left()) time_reference();
   out.cycle_ms_median = eval::Median(fast_ms);
   out.motion_ms_median = eval::Median(motion_ms);
   out.reference_ms_median = eval::Median(reference_ms);
