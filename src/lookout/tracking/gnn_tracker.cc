@@ -30,15 +30,8 @@ bool GnnTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
     ++refused_;
     return false;
   }
-  std::vector<Detection> detections;
-  detections.reserve(all.size());
-  for (const Detection& d : all) {
-    if (DetectionUsable(d)) {
-      detections.push_back(d);
-    } else {
-      ++dropped_;
-    }
-  }
+  const std::vector<Detection> detections = UsableDetections(all);
+  dropped_ += static_cast<std::int64_t>(all.size() - detections.size());
   const MotionModel cv = ConstantVelocity(options_.acceleration_psd);
   // Predict every track to this scan.
   for (std::size_t i = 0; i < tracks_.size(); ++i) {

@@ -149,15 +149,8 @@ bool MhtTracker::Step(TimeNs stamp, const std::vector<Detection>& all, const Sen
     ++refused_;
     return false;
   }
-  std::vector<Detection> detections;
-  detections.reserve(all.size());
-  for (const Detection& d : all) {
-    if (DetectionUsable(d)) {
-      detections.push_back(d);
-    } else {
-      ++dropped_;
-    }
-  }
+  const std::vector<Detection> detections = UsableDetections(all);
+  dropped_ += static_cast<std::int64_t>(all.size() - detections.size());
   const auto detection_count = static_cast<int>(detections.size());
   const double gate = ChiSquareQuantile(options_.gate_probability, 2.0);
 

@@ -1,7 +1,9 @@
 #include "lookout/tracking/tracker.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "lookout/core/chi_square.h"
 
@@ -21,8 +23,14 @@ bool UsableCovariance(const Eigen::Matrix2d& c) {
 
 }  // namespace
 
-bool DetectionUsable(const Detection& d) {
-  return d.position_m.allFinite() && UsableCovariance(d.covariance);
+std::vector<Detection> UsableDetections(const std::vector<Detection>& detections) {
+  std::vector<Detection> usable;
+  usable.reserve(detections.size());
+  std::copy_if(detections.begin(), detections.end(), std::back_inserter(usable),
+               [](const Detection& d) {
+                 return d.position_m.allFinite() && UsableCovariance(d.covariance);
+               });
+  return usable;
 }
 
 ClassCentre MeasurementFor(const Detection& d, ObjectClass track_class) {

@@ -149,8 +149,9 @@ struct Track {
   double HeadingRad() const { return std::atan2(state.mean(3), state.mean(2)); }
 };
 
-// Whether a detection can be used: finite, with a symmetric positive definite covariance.
-bool DetectionUsable(const Detection& detection);
+// The detections that can be used, in their order: finite, with a symmetric positive definite
+// covariance. Both trackers drop the others and count them (Tracker::dropped_detections).
+std::vector<Detection> UsableDetections(const std::vector<Detection>& detections);
 
 // Whether a detection of class `detection` may join a track of class `track`.
 bool ClassesCompatible(ObjectClass track, ObjectClass detection);

@@ -15,6 +15,26 @@ Detection At(double x, double y) {
   return d;
 }
 
+TEST(UsableDetections, KeepsTheFiniteWithAPositiveDefiniteCovarianceInTheirOrder) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Detection not_finite = At(nan, 1.0);
+  Detection singular = At(2.0, 2.0);
+  singular.covariance << 0.04, 0.06, 0.06, 0.09;  // determinant 0
+  Detection asymmetric = At(3.0, 3.0);
+  asymmetric.covariance(0, 1) = 0.01;
+  Detection nan_covariance = At(4.0, 4.0);
+  nan_covariance.covariance(1, 1) = nan;
+  Detection correlated = At(5.0, -5.0);
+  correlated.covariance << 0.04, 0.05, 0.05, 0.09;  // determinant 0.0011 > 0
+  const std::vector<Detection> usable = UsableDetections(
+      {At(1.0, 0.0), not_finite, singular, asymmetric, nan_covariance, correlated, At(6.0, 0.0)});
+  ASSERT_EQ(usable.size(), 3u);
+  EXPECT_EQ(usable[0].position_m, Eigen::Vector2d(1.0, 0.0));
+  EXPECT_EQ(usable[1].position_m, Eigen::Vector2d(5.0, -5.0));
+  EXPECT_EQ(usable[2].position_m, Eigen::Vector2d(6.0, 0.0));
+  EXPECT_TRUE(UsableDetections({}).empty());
+}
+
 TEST(BirthState, TakesTheDetectionsVelocityWhereItIsSurerThanThePrior) {
   Detection d = At(3.0, -2.0);
   const Gaussian without = BirthState(d, 5.0);
