@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <span>
@@ -240,6 +241,9 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z,
                      std::span<float> confidence, std::vector<MeasuredBody>& measured) {
   const HitMaps* older = flow.long_pair();
   if (older == nullptr) return;
+  // The bodies' measurements read the previous scans' outlines (scan_flow.h).
+  const HitMaps& short_outline = flow.short_outline_pair();
+  const HitMaps& older_outline = *flow.long_outline_pair();
   const int search_half = 2 * options.search_half_cells;
   const double cells_per_mps = dt_s / g.cell_size_m();
   const auto member = [&](std::size_t s) {
@@ -250,7 +254,9 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z,
     const std::size_t s = g.StorageIndexOfLocal(c);
     return std::hypot(static_cast<double>(vx[s]), static_cast<double>(vy[s]));
   };
+  const WindowIndexer indexer(g);
   HitBody body;
+  std::vector<CellIndex> outline;
   // Bodies start from this scan's hits in the measurement's order; each body is measured and
   // written alone, so the order does not change the result.
   for (const std::size_t first : hits_now) {
@@ -275,12 +281,16 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z,
     // cycle over 6 scans: a 3 m/s car's face moves 1.6), the one-cycle pair with the same
     // search (a 5 m/s truck moves 2.7 cells a cycle), where it moves
     // still_min_displacement_cells or more, but not along a line of hits.
+    // The scan pair compares outlines (scan_flow.h).
+    outline.clear();
+    std::copy_if(body.cells.begin(), body.cells.end(), std::back_inserter(outline),
+                 [&](const CellIndex& c) { return OnOutline(z, indexer, c.ix, c.iy); });
     const HitMaps* baseline = older;
     double per_cycle = flow.long_lag_scale();
-    ClusterMotion m = MeasureClusterMotion(*older, body.cells, {0, 0}, search_half, options);
+    ClusterMotion m = MeasureClusterMotion(older_outline, outline, {0, 0}, search_half, options);
     if (!m.measured || std::max(std::abs(m.dx_cells), std::abs(m.dy_cells)) > search_half - 1) {
-      m = MeasureClusterMotion(flow.short_pair(), body.cells, {0, 0}, search_half, options);
-      if (!far_enough(m, search_half) || SlidesAlongItsLine(body.cells, m.dx_cells, m.dy_cells)) {
+      m = MeasureClusterMotion(short_outline, outline, {0, 0}, search_half, options);
+      if (!far_enough(m, search_half) || SlidesAlongItsLine(outline, m.dx_cells, m.dy_cells)) {
         continue;
       }
       baseline = &flow.short_pair();
@@ -297,8 +307,8 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z,
     const int sx = static_cast<int>(std::lround(m.dx_cells * per_cycle));
     const int sy = static_cast<int>(std::lround(m.dy_cells * per_cycle));
     if (baseline == older &&
-        ScoreOf(flow.short_pair(), body.cells, sx, sy) <
-            options.min_matched_share * 2.0 * static_cast<double>(body.cells.size())) {
+        ScoreOf(short_outline, outline, sx, sy) <
+            options.min_matched_share * 2.0 * static_cast<double>(outline.size())) {
       continue;
     }
     // The grid believed it slower.
@@ -542,12 +552,13 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     const double px = mean_x / weight * cells_per_mps;
     const double py = mean_y / weight * cells_per_mps;
 
-    // H: its cells hit now, and the newly hit cells next to them.
+    // H: its cells hit now, and the newly hit cells next to them, on the scan's outline (the scan
+    // pair compares outlines, scan_flow.h).
     attached.clear();
     hits.clear();
     for (const std::size_t cell : cluster.cells) {
       const CellIndex c = local_of(cell);
-      if (hit_now(cell)) hits.push_back(c);
+      if (hit_now(cell) && OnOutline(z, indexer, c.ix, c.iy)) hits.push_back(c);
       for (int y = c.iy - options.attach_cells; y <= c.iy + options.attach_cells; ++y) {
         for (int x = c.ix - options.attach_cells; x <= c.ix + options.attach_cells; ++x) {
           if (x < 0 || y < 0 || x >= g.width() || y >= g.height()) continue;
@@ -555,13 +566,14 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
           if (role[s] != kFree || !hit_now(s) || HitBefore(flow.short_pair(), {x, y})) continue;
           role[s] = kAttached;
           attached.push_back(s);
-          hits.push_back({x, y});
+          if (OnOutline(z, indexer, x, y)) hits.push_back({x, y});
         }
       }
     }
 
     // The baseline: the long pair for a body too slow to move whole cells in one cycle.
     const HitMaps* maps = &flow.short_pair();
+    const HitMaps* outline_maps = &flow.short_outline_pair();  // what the measurement reads
     double per_cycle = 1.0;  // this cycle's share of the baseline
     int half = options.search_half_cells;
     const bool slow = std::max(std::abs(px), std::abs(py)) <
@@ -569,12 +581,13 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     const bool long_baseline = slow && flow.long_pair() != nullptr;
     if (long_baseline) {
       maps = flow.long_pair();
+      outline_maps = flow.long_outline_pair();
       per_cycle = flow.long_lag_scale();
       half = 2 * options.search_half_cells;
     }
     const CellIndex predicted{static_cast<int>(std::lround(px / per_cycle)),
                               static_cast<int>(std::lround(py / per_cycle))};
-    const ClusterMotion m = MeasureClusterMotion(*maps, hits, predicted, half, options);
+    const ClusterMotion m = MeasureClusterMotion(*outline_maps, hits, predicted, half, options);
     if (!m.measured) continue;
     const double body_vx = m.dx_cells * per_cycle / cells_per_mps;
     const double body_vy = m.dy_cells * per_cycle / cells_per_mps;

@@ -111,6 +111,28 @@ TEST(MeasureClusterMotionTest, AStraightSideAloneIsAmbiguousAlongItself) {
   EXPECT_FALSE(across.measured);
 }
 
+// A body seen whole (12 x 6 cells, a dense sensor's view of a car) moved 11 cells along x:
+// its hits match themselves two and three cells off nearly as well as at its motion (the
+// inside matches everywhere), so all its hits are ambiguous; its outlines, which the scan pair
+// compares (scan_flow.h), are measured at the motion.
+TEST(MeasureClusterMotionTest, ASolidBodyIsMeasuredByItsOutline) {
+  std::vector<CellIndex> solid, outline;
+  for (int y = 20; y < 26; ++y) {
+    for (int x = 10; x < 22; ++x) {
+      solid.push_back({x, y});
+      if (x == 10 || x == 21 || y == 20 || y == 25) outline.push_back({x, y});
+    }
+  }
+  const ClusterMotion whole =
+      MeasureClusterMotion(HitsBefore(64, 64, solid), ShiftedCells(solid, 11, 0), {10, 0}, 3, {});
+  EXPECT_FALSE(whole.measured);
+  const ClusterMotion m = MeasureClusterMotion(HitsBefore(64, 64, outline),
+                                               ShiftedCells(outline, 11, 0), {10, 0}, 3, {});
+  ASSERT_TRUE(m.measured);
+  EXPECT_DOUBLE_EQ(m.dx_cells, 11.0);
+  EXPECT_DOUBLE_EQ(m.dy_cells, 0.0);
+}
+
 TEST(MeasureClusterMotionTest, TooFewHitsOrNoMatchAreNotMeasured) {
   const std::vector<CellIndex> before = CarOutlineCells();
   const HitMaps maps = HitsBefore(64, 64, before);

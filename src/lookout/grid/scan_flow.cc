@@ -147,6 +147,18 @@ void LayNow(const MeasurementGrid& z, HitMaps& maps) {
 
 }  // namespace
 
+bool OnOutline(const MeasurementGrid& z, const WindowIndexer& indexer, int ix, int iy) {
+  const auto hit = [&](int x, int y) {
+    return indexer.Inside(x, y) && z.p_occupied[indexer.Storage(x, y)] > 0.5f;
+  };
+  for (int y = iy - 1; y <= iy + 1; ++y) {
+    for (int x = ix - 1; x <= ix + 1; ++x) {
+      if (!hit(x, y)) return true;
+    }
+  }
+  return false;
+}
+
 void ScanFlowOptions::Validate(const std::string& source) const {
   Require(search_half_cells >= 0 && search_half_cells <= 32, source, "search_half_cells",
           "must be in [0, 32]");
@@ -426,16 +438,22 @@ void ScanFlow::Prepare(const MeasurementGrid& z) {
   };
   empty(maps_, has_pair_ ? g.width() : 0, has_pair_ ? g.height() : 0);
   empty(long_maps_, has_long_pair_ ? g.width() : 0, has_long_pair_ ? g.height() : 0);
+  short_outline_ = has_pair_ && !history_.back().outline_global.empty();
+  long_outline_ = has_long_pair_ && !history_.front().outline_global.empty();
+  empty(outline_maps_, short_outline_ ? g.width() : 0, short_outline_ ? g.height() : 0);
+  empty(long_outline_maps_, long_outline_ ? g.width() : 0, long_outline_ ? g.height() : 0);
   if (!has_pair_) return;
-  const auto lay_before = [&](const Scan& scan, HitMaps& maps) {
-    for (const CellIndex& global : scan.hits_global) {
+  const auto lay_before = [&](const std::vector<CellIndex>& hits_global, HitMaps& maps) {
+    for (const CellIndex& global : hits_global) {
       const CellIndex local = g.LocalFromGlobal(global);
       maps.AddBefore(local.ix, local.iy);
     }
   };
-  lay_before(history_.back(), maps_);
+  lay_before(history_.back().hits_global, maps_);
+  if (short_outline_) lay_before(history_.back().outline_global, outline_maps_);
   if (has_long_pair_) {
-    lay_before(history_.front(), long_maps_);
+    lay_before(history_.front().hits_global, long_maps_);
+    if (long_outline_) lay_before(history_.front().outline_global, long_outline_maps_);
     long_lag_scale_ =
         ToSeconds(z.stamp - history_.back().stamp) / ToSeconds(z.stamp - history_.front().stamp);
   }
@@ -553,9 +571,16 @@ void ScanFlow::Remember(const MeasurementGrid& z) {
   if (!options_.enabled) return;
   Scan scan;
   scan.stamp = z.stamp;
+  const WindowIndexer indexer(z.geometry);
   for (const std::size_t cell : z.touched) {
-    if (z.p_occupied[cell] > 0.5f) scan.hits_global.push_back(z.geometry.GlobalFromStorage(cell));
+    if (z.p_occupied[cell] <= 0.5f) continue;
+    const CellIndex global = z.geometry.GlobalFromStorage(cell);
+    scan.hits_global.push_back(global);
+    const CellIndex local = indexer.Local(cell);
+    if (OnOutline(z, indexer, local.ix, local.iy)) scan.outline_global.push_back(global);
   }
+  // A lidar's scan is outline whole: its maps serve for both.
+  if (scan.outline_global.size() == scan.hits_global.size()) scan.outline_global.clear();
   history_.push_back(std::move(scan));
   while (static_cast<int>(history_.size()) > options_.long_lag_scans) history_.pop_front();
 }

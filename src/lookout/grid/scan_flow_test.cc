@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lookout/core/input_error.h"
+#include "lookout/grid/filter_state.h"
 
 namespace lookout::grid {
 namespace {
@@ -300,9 +301,38 @@ TEST(ScanFlowTest, AmbiguousStayingConnectedToMotionIsUnknown) {
   EXPECT_EQ(m[index_of({25, 20})].kind, FlowKind::kUnknown);
 }
 
-// Prepare lays this scan's hits and free cells on the window row by row from storage; the
-// maps must be those of the cells' own window coordinates wherever the window has scrolled
-// (its storage wraps inside each row and between rows).
+// A solid block's hits: its border is its outline, its inside is not; a line is outline
+// whole; a hit on the window's edge is outline (off the window counts as no hit).
+TEST(ScanFlowTest, TheOutlineIsEveryHitWithANeighbourNotHit) {
+  const ScrollingGridGeometry g(0.15, 24, 16, CellIndex{-7, 3});
+  const WindowIndexer indexer(g);
+  MeasurementGrid z{g, 1, std::vector<float>(g.CellCount(), 0.3f), {}, {}};
+  const auto hit = [&](int x, int y) { z.p_occupied[indexer.Storage(x, y)] = 0.7f; };
+  for (int y = 4; y < 10; ++y) {
+    for (int x = 5; x < 17; ++x) hit(x, y);  // 12 x 6
+  }
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 3; ++x) hit(x, y);  // 3 x 4 in the window's corner
+  }
+  for (int x = 18; x < 24; ++x) hit(x, 12);  // a line
+  int outline = 0, inside = 0;
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      if (z.p_occupied[indexer.Storage(x, y)] < 0.5f) continue;
+      const bool expected_inside =
+          (x > 5 && x < 16 && y > 4 && y < 9) || (x == 1 && y > 0 && y < 3);
+      EXPECT_EQ(OnOutline(z, indexer, x, y), !expected_inside) << x << " " << y;
+      ++(expected_inside ? inside : outline);
+    }
+  }
+  EXPECT_EQ(inside, 10 * 4 + 2);
+  EXPECT_EQ(outline, 2 * 12 + 2 * 4 + 12 - 2 + 6);
+}
+
+// Prepare lays this scan's hits and free cells on the window row by row from storage, and the
+// previous scans' outlines where they are not all their hits; the maps must be those of the
+// cells' own window coordinates wherever the window has scrolled (its storage wraps inside
+// each row and between rows).
 TEST(ScanFlowTest, PrepareLaysTheScanOnTheWindowWhereverItScrolled) {
   const std::uint64_t seed = 3101;
   std::mt19937_64 rng(seed);
@@ -311,15 +341,32 @@ TEST(ScanFlowTest, PrepareLaysTheScanOnTheWindowWhereverItScrolled) {
   options.long_lag_scans = 2;
   for (const CellIndex origin : {CellIndex{0, 0}, CellIndex{-5, 7}, CellIndex{37, -70}}) {
     const ScrollingGridGeometry g(0.15, kSide, kSide - 9, origin);
+    // Sparse scans (a hit in ten cells) and dense ones (nine in ten: many hits inside areas of
+    // hits, which the pair leaves out).
     const auto random_scan = [&](TimeNs stamp) {
+      const bool dense = stamp % 2 == 0;
       MeasurementGrid z{g, stamp, std::vector<float>(g.CellCount(), 0.5f), {}, {}};
       for (std::size_t s = 0; s < g.CellCount(); ++s) {
         const auto draw = rng() % 10;
-        if (draw >= 3) continue;
-        z.p_occupied[s] = draw == 0 ? 0.7f : 0.3f;
+        if (!dense && draw >= 3) continue;
+        z.p_occupied[s] = (dense ? draw != 0 : draw == 0) ? 0.7f : 0.3f;
         z.touched.push_back(s);
       }
       return z;
+    };
+    // A hit with a neighbour that is no hit or off the window, by its definition.
+    const auto outline = [&](const MeasurementGrid& scan, const CellIndex& local) {
+      const auto hit = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < g.width() && y < g.height() &&
+               scan.p_occupied[g.StorageIndexOfLocal({x, y})] > 0.5f;
+      };
+      if (!hit(local.ix, local.iy)) return false;
+      for (int y = local.iy - 1; y <= local.iy + 1; ++y) {
+        for (int x = local.ix - 1; x <= local.ix + 1; ++x) {
+          if (!hit(x, y)) return true;
+        }
+      }
+      return false;
     };
     ScanFlow flow(options);
     std::vector<MeasurementGrid> scans = {random_scan(1), random_scan(2)};
@@ -355,6 +402,25 @@ TEST(ScanFlowTest, PrepareLaysTheScanOnTheWindowWhereverItScrolled) {
                      " " + std::to_string(origin.iy) + ", cycle " + std::to_string(stamp));
         EXPECT_EQ(maps->now, expected.now);
         EXPECT_EQ(maps->free_now, expected.free_now);
+        EXPECT_EQ(maps->before, expected.before);
+        EXPECT_EQ(maps->before_near, expected.before_near);
+      }
+      // The outline pairs: the previous scans' outline hits only (the dense scans have others).
+      const auto laid_outline = [&](const MeasurementGrid& before) {
+        HitMaps expected;
+        expected.Reset(g.width(), g.height());
+        for (const std::size_t s : before.touched) {
+          const CellIndex local = g.LocalFromGlobal(g.GlobalFromStorage(s));
+          if (outline(before, local)) expected.AddBefore(local.ix, local.iy);
+        }
+        return expected;
+      };
+      ASSERT_NE(flow.long_outline_pair(), nullptr);
+      const std::array<std::pair<const HitMaps*, HitMaps>, 2> outline_pairs = {
+          std::pair{&flow.short_outline_pair(), laid_outline(scans[k - 1])},
+          std::pair{flow.long_outline_pair(), laid_outline(scans[k - 2])}};
+      for (const auto& [maps, expected] : outline_pairs) {
+        SCOPED_TRACE("outline, seed " + std::to_string(seed) + ", cycle " + std::to_string(stamp));
         EXPECT_EQ(maps->before, expected.before);
         EXPECT_EQ(maps->before_near, expected.before_near);
       }
