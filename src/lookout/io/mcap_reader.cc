@@ -302,10 +302,7 @@ class Parser {
     schema.encoding = fields.Prefixed("encoding");
     schema.data = fields.Prefixed("data");
     if (schema.id == 0) return;  // spec: a Schema with id 0 is invalid and ignored
-    const auto [it, inserted] = contents_.schemas.try_emplace(schema.id, schema);
-    if (!inserted && !(it->second == schema)) {
-      FailAt(fields.where(), fmt::format("redefines schema {} differently", schema.id));
-    }
+    AddOnce(contents_.schemas, schema.id, schema, fields, "schema");
   }
 
   void AddChannel(FieldReader& fields) {
@@ -323,9 +320,17 @@ class Parser {
       FailAt(fields.where(), fmt::format("channel '{}' refers to schema {}, not defined before it",
                                          Printable(channel.topic), channel.schema_id));
     }
-    const auto [it, inserted] = contents_.channels.try_emplace(channel.id, channel);
-    if (!inserted && !(it->second == channel)) {
-      FailAt(fields.where(), fmt::format("redefines channel {} differently", channel.id));
+    AddOnce(contents_.channels, channel.id, channel, fields, "channel");
+  }
+
+  // A schema or channel may come again (in chunks and in the summary, by the spec), the same;
+  // never changed.
+  template <typename Record>
+  void AddOnce(std::map<std::uint16_t, Record>& records, std::uint16_t id, const Record& record,
+               const FieldReader& fields, std::string_view kind) {
+    const auto [it, inserted] = records.try_emplace(id, record);
+    if (!inserted && !(it->second == record)) {
+      FailAt(fields.where(), fmt::format("redefines {} {} differently", kind, id));
     }
   }
 

@@ -193,6 +193,10 @@ TEST(McapReaderTest, RefusesReferencesToUndefinedRecords) {
   EXPECT_THAT(ErrorOf(FileWith(Channel(2, 4))), HasSubstr("refers to schema 4"));
   EXPECT_THAT(ErrorOf(FileWith(Schema(1) + Rec(0x03, Le(1, 2) + Str("Other") + Str("") + Str("")))),
               HasSubstr("redefines schema 1 differently"));
+  EXPECT_THAT(ErrorOf(FileWith(Schema(1) + Channel(2, 1) + Channel(2, 0))),
+              HasSubstr("redefines channel 2 differently"));
+  // The same record again is no redefinition.
+  EXPECT_EQ(ErrorOf(FileWith(Schema(1) + Schema(1) + Channel(2, 1) + Channel(2, 1))), "(no error)");
 }
 
 TEST(McapReaderTest, RefusesMisplacedRecords) {
