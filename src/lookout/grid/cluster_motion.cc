@@ -281,7 +281,7 @@ void MoveStillBodies(const ScrollingGridGeometry& g, const MeasurementGrid& z,
     // cycle over 6 scans: a 3 m/s car's face moves 1.6), the one-cycle pair with the same
     // search (a 5 m/s truck moves 2.7 cells a cycle), where it moves
     // still_min_displacement_cells or more, but not along a line of hits.
-    // The scan pair compares outlines (scan_flow.h).
+    // A body is measured on the scans' outlines (scan_flow.h).
     outline.clear();
     std::copy_if(body.cells.begin(), body.cells.end(), std::back_inserter(outline),
                  [&](const CellIndex& c) { return OnOutline(z, indexer, c.ix, c.iy); });
@@ -552,8 +552,8 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
     const double px = mean_x / weight * cells_per_mps;
     const double py = mean_y / weight * cells_per_mps;
 
-    // H: its cells hit now, and the newly hit cells next to them, on the scan's outline (the scan
-    // pair compares outlines, scan_flow.h).
+    // H: its cells hit now, and the newly hit cells next to them, on the scan's outline (a body is
+    // measured on the scans' outlines, scan_flow.h).
     attached.clear();
     hits.clear();
     for (const std::size_t cell : cluster.cells) {

@@ -113,8 +113,8 @@ TEST(MeasureClusterMotionTest, AStraightSideAloneIsAmbiguousAlongItself) {
 
 // A body seen whole (12 x 6 cells, a dense sensor's view of a car) moved 11 cells along x:
 // its hits match themselves two and three cells off nearly as well as at its motion (the
-// inside matches everywhere), so all its hits are ambiguous; its outlines, which the scan pair
-// compares (scan_flow.h), are measured at the motion.
+// inside matches everywhere), so all its hits are ambiguous; its outlines, on which the clusters'
+// stage measures a body (scan_flow.h), are measured at the motion.
 TEST(MeasureClusterMotionTest, ASolidBodyIsMeasuredByItsOutline) {
   std::vector<CellIndex> solid, outline;
   for (int y = 20; y < 26; ++y) {

@@ -472,8 +472,8 @@ FastBoxRun RunTwentyMetresPerSecondBox() {
   return run;
 }
 
-// The box is held since the scan pair compares outlines (scan_flow.h): before, a solid box
-// matched itself two cells off nearly as well as at its motion, the clusters' stage called it
+// The box is held since a body is measured on the scans' outlines (scan_flow.h): before, a solid
+// box matched itself two cells off nearly as well as at its motion, the clusters' stage called it
 // ambiguous, and the box was lost (0 cells from cycle 19). Its speed reads 18.4-19.3 m/s.
 TEST(ExtendedGridTest, TwentyMetresPerSecondSolidBoxIsHeld) {
   const FastBoxRun run = RunTwentyMetresPerSecondBox();

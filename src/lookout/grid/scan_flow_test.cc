@@ -342,7 +342,7 @@ TEST(ScanFlowTest, PrepareLaysTheScanOnTheWindowWhereverItScrolled) {
   for (const CellIndex origin : {CellIndex{0, 0}, CellIndex{-5, 7}, CellIndex{37, -70}}) {
     const ScrollingGridGeometry g(0.15, kSide, kSide - 9, origin);
     // Sparse scans (a hit in ten cells) and dense ones (nine in ten: many hits inside areas of
-    // hits, which the pair leaves out).
+    // hits, which the outline pairs leave out).
     const auto random_scan = [&](TimeNs stamp) {
       const bool dense = stamp % 2 == 0;
       MeasurementGrid z{g, stamp, std::vector<float>(g.CellCount(), 0.5f), {}, {}};
