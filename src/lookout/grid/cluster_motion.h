@@ -19,7 +19,10 @@
 //   best     = the highest score within +-search_half of the predicted displacement (ties: the
 //              shortest displacement, then the first in row order);
 //   measured when score(best) >= min_matched_share |H|, |H| >= min_hits, and no displacement
-//              farther than ambiguity_radius_cells from best scores ambiguity_share of it;
+//              farther than ambiguity_radius_cells from best scores ambiguity_share of it
+//              (none longer than best counts for a body seen whole, some of its hits inside an
+//              area of hits, that left free space behind it: it matches itself moved further
+//              into its own extent too);
 //   sub-cell by the vertex of the parabola through the scores at best and its two neighbours,
 //              along each axis (clamped to half a cell): whole-cell matching alone quantises a
 //              walker's 0.6 cell a cycle to 0 or 1.
@@ -28,7 +31,7 @@
 // linked by eq. 15's D):
 //   - H: the cluster's cells this scan hits, and the hits within attach_cells of them that the
 //     previous scan did not hit (the body arriving: a car's newly seen front; a wall beside a
-//     walker, hit scan after scan, is not attached);
+//     walker, hit scan after scan, is not attached), those on the scan's outline (scan_flow.h);
 //   - the baseline: one cycle, or the scan pair's long baseline (scan_flow.h) when the cluster's
 //     predicted displacement is under its long_lag_below_cells a cycle, scaled by the stamps;
 //   - not measured: a small body over the long baseline whose measurement changes its
@@ -207,10 +210,20 @@ std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIn
                                      const CellIndex& predicted, int search_half);
 
 // The measurement above: `hits_now` against `maps.before` (HitMaps' window-local cells),
-// displacements within +-search_half of `predicted`. Pure.
+// displacements within +-search_half of `predicted`. With `left_free_space` (the body left
+// free space behind it, LeftFreeSpace), a displacement longer than the best is no rival: a
+// body seen whole also matches itself moved further into its own extent, and the shortest
+// displacement that explains its hits is its motion (the scan flow's rule, scan_flow.h). Pure.
 ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,
                                    const CellIndex& predicted, int search_half,
-                                   const ClusterMotionOptions& options);
+                                   const ClusterMotionOptions& options,
+                                   bool left_free_space = false);
+
+// Whether this scan sees free at least `min_share` of the baseline scan's hits where a body
+// was: the box of its hits now moved back by `predicted`, a cell wider on each side. A body
+// that moved leaves free space; a wall or a side sliding along itself is hit again. Pure.
+bool LeftFreeSpace(const HitMaps& maps, std::span<const CellIndex> hits_now,
+                   const CellIndex& predicted, double min_share);
 
 // FilterLayerIds::hit_scans after the scan `z`: one more where it hits, 0 where it sees free,
 // unchanged where it says nothing. Returns the scan's hits (storage indices) in z.touched's

@@ -133,6 +133,51 @@ TEST(MeasureClusterMotionTest, ASolidBodyIsMeasuredByItsOutline) {
   EXPECT_DOUBLE_EQ(m.dy_cells, 0.0);
 }
 
+// The outline of the box of cells [x0, x0 + 12) x [20, 26), a body seen whole.
+std::vector<CellIndex> BoxOutline(int x0) {
+  std::vector<CellIndex> cells;
+  for (int y = 20; y < 26; ++y) {
+    for (int x = x0; x < x0 + 12; ++x) {
+      if (x == x0 || x == x0 + 11 || y == 20 || y == 25) cells.push_back({x, y});
+    }
+  }
+  return cells;
+}
+
+// The box above moved 11 cells, its outline now without its rear side (the cells it shares with
+// the scan before, which its cluster did not hold): two rows and a front, which match
+// themselves moved two cells further 88 % as well. Where the box left free space behind it, a
+// longer displacement is no rival and the box is measured at its motion.
+TEST(MeasureClusterMotionTest, ABodyThatLeftFreeSpaceHasNoLongerRivals) {
+  std::vector<CellIndex> before_solid;
+  for (int y = 20; y < 26; ++y) {
+    for (int x = 10; x < 22; ++x) before_solid.push_back({x, y});
+  }
+  std::vector<CellIndex> now;
+  for (const CellIndex& c : BoxOutline(21)) {
+    if (c.ix != 21) now.push_back(c);
+  }
+  HitMaps outlines = HitsBefore(64, 64, BoxOutline(10));
+  EXPECT_FALSE(MeasureClusterMotion(outlines, now, {10, 0}, 3, {}).measured);
+  const ClusterMotion m = MeasureClusterMotion(outlines, now, {10, 0}, 3, {}, true);
+  ASSERT_TRUE(m.measured);
+  EXPECT_NEAR(m.dx_cells, 11.0, 0.5);
+  EXPECT_DOUBLE_EQ(m.dy_cells, 0.0);
+
+  // The free space: the scan before's hits (the whole box) seen free where the box left them.
+  HitMaps pair = HitsBefore(64, 64, before_solid);
+  for (const CellIndex& c : before_solid) {
+    if (c.ix < 21) pair.AddFreeNow(c.ix, c.iy);
+  }
+  // Where it was (its box now moved back 10 cells, a cell wider): 66 hits before, 60 seen free.
+  EXPECT_TRUE(LeftFreeSpace(pair, now, {10, 0}, 0.25));
+  EXPECT_TRUE(LeftFreeSpace(pair, now, {10, 0}, 59.5 / 66.0));
+  EXPECT_FALSE(LeftFreeSpace(pair, now, {10, 0}, 60.5 / 66.0));
+  // A wall hit where it stood: nothing seen free.
+  EXPECT_FALSE(LeftFreeSpace(HitsBefore(64, 64, before_solid), BoxOutline(10), {0, 0}, 0.25));
+  EXPECT_FALSE(LeftFreeSpace(HitMaps{}, now, {10, 0}, 0.25));
+}
+
 TEST(MeasureClusterMotionTest, TooFewHitsOrNoMatchAreNotMeasured) {
   const std::vector<CellIndex> before = CarOutlineCells();
   const HitMaps maps = HitsBefore(64, 64, before);
