@@ -492,7 +492,12 @@ ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellInde
     for (int ox = -search_half; ox <= search_half; ++ox) {
       const double ex = ox - best.ix, ey = oy - best.iy;
       if (ex * ex + ey * ey <= radius2) continue;
-      if (left_free_space && length2(ox, oy) > length2(best.ix, best.iy)) continue;
+      // A staying best keeps its rivals, as in the scan flow: a body's hits that match the scan
+      // before's unshifted say nothing of how far it went if it moved.
+      if (left_free_space && length2(best.ix, best.iy) > 0 &&
+          length2(ox, oy) > length2(best.ix, best.iy)) {
+        continue;
+      }
       if (score(ox, oy) >= options.ambiguity_share * best_score) return out;  // ambiguous
     }
   }
@@ -622,8 +627,8 @@ ClusterStageOutput ApplyClusterMotion(GridLayers& layers, const FilterLayerIds& 
                               static_cast<int>(std::lround(py / per_cycle))};
     // A body seen whole that left free space behind it, unless its hits are one line along its
     // motion (a side sliding along itself leaves its rear seen through too). Not a lidar's
-    // surfaces: on the catalogue the rule for every body read intersafe-fig8's velocity RMSE
-    // after 1 s 0.381 -> 0.800 m/s (docs/grid.md, "A body seen whole ...").
+    // surfaces: for every body the catalogue and three other seeds of it read better and worse
+    // by turns (docs/grid.md, "A body seen whole is measured by its outline").
     const bool left_free_space =
         seen_whole &&
         LeftFreeSpace(*maps, hits, predicted, flow.options().shortest_min_vacated_share) &&

@@ -211,9 +211,10 @@ std::vector<int> ClusterMotionScores(const HitMaps& maps, std::span<const CellIn
 
 // The measurement above: `hits_now` against `maps.before` (HitMaps' window-local cells),
 // displacements within +-search_half of `predicted`. With `left_free_space` (the body left
-// free space behind it, LeftFreeSpace), a displacement longer than the best is no rival: a
-// body seen whole also matches itself moved further into its own extent, and the shortest
-// displacement that explains its hits is its motion (the scan flow's rule, scan_flow.h). Pure.
+// free space behind it, LeftFreeSpace), a displacement longer than a best that is no staying
+// is no rival: a body seen whole also matches itself moved further into its own extent, and
+// the shortest displacement that explains its hits is its motion (the scan flow's rule,
+// scan_flow.h). Pure.
 ClusterMotion MeasureClusterMotion(const HitMaps& maps, std::span<const CellIndex> hits_now,
                                    const CellIndex& predicted, int search_half,
                                    const ClusterMotionOptions& options,

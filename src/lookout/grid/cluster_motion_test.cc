@@ -163,6 +163,13 @@ TEST(MeasureClusterMotionTest, ABodyThatLeftFreeSpaceHasNoLongerRivals) {
   ASSERT_TRUE(m.measured);
   EXPECT_NEAR(m.dx_cells, 11.0, 0.5);
   EXPECT_DOUBLE_EQ(m.dy_cells, 0.0);
+  // The same hits where the box stood, predicted 2 cells on: staying is the best and keeps its
+  // longer rivals (two cells on matches 85 % as well).
+  std::vector<CellIndex> stayed;
+  for (const CellIndex& c : BoxOutline(10)) {
+    if (c.ix != 10) stayed.push_back(c);
+  }
+  EXPECT_FALSE(MeasureClusterMotion(outlines, stayed, {2, 0}, 3, {}, true).measured);
 
   // The free space: the scan before's hits (the whole box) seen free where the box left them.
   HitMaps pair = HitsBefore(64, 64, before_solid);
