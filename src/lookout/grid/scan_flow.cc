@@ -438,10 +438,11 @@ void ScanFlow::Prepare(const MeasurementGrid& z) {
   };
   empty(maps_, has_pair_ ? g.width() : 0, has_pair_ ? g.height() : 0);
   empty(long_maps_, has_long_pair_ ? g.width() : 0, has_long_pair_ ? g.height() : 0);
-  short_outline_ = has_pair_ && !history_.back().outline_global.empty();
-  long_outline_ = has_long_pair_ && !history_.front().outline_global.empty();
-  empty(outline_maps_, short_outline_ ? g.width() : 0, short_outline_ ? g.height() : 0);
-  empty(long_outline_maps_, long_outline_ ? g.width() : 0, long_outline_ ? g.height() : 0);
+  // The outline maps have a size only for a scan with hits off its outline.
+  const bool short_outline = has_pair_ && !history_.back().outline_global.empty();
+  const bool long_outline = has_long_pair_ && !history_.front().outline_global.empty();
+  empty(outline_maps_, short_outline ? g.width() : 0, short_outline ? g.height() : 0);
+  empty(long_outline_maps_, long_outline ? g.width() : 0, long_outline ? g.height() : 0);
   if (!has_pair_) return;
   const auto lay_before = [&](const std::vector<CellIndex>& hits_global, HitMaps& maps) {
     for (const CellIndex& global : hits_global) {
@@ -450,10 +451,10 @@ void ScanFlow::Prepare(const MeasurementGrid& z) {
     }
   };
   lay_before(history_.back().hits_global, maps_);
-  if (short_outline_) lay_before(history_.back().outline_global, outline_maps_);
+  if (short_outline) lay_before(history_.back().outline_global, outline_maps_);
   if (has_long_pair_) {
     lay_before(history_.front().hits_global, long_maps_);
-    if (long_outline_) lay_before(history_.front().outline_global, long_outline_maps_);
+    if (long_outline) lay_before(history_.front().outline_global, long_outline_maps_);
     long_lag_scale_ =
         ToSeconds(z.stamp - history_.back().stamp) / ToSeconds(z.stamp - history_.front().stamp);
   }

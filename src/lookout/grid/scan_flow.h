@@ -221,10 +221,12 @@ class ScanFlow {
   // the previous scan is outline whole, as a lidar's is. The per-cell flow above keeps every
   // hit: a static solid body's inside shows it staying, which its outline alone, a few cells
   // away, does not (ExtendedGridTest.StaticWorldStaysStaticWhileTheWindowScrolls).
-  const HitMaps& short_outline_pair() const { return short_outline_ ? outline_maps_ : maps_; }
+  const HitMaps& short_outline_pair() const {
+    return outline_maps_.width != 0 ? outline_maps_ : maps_;
+  }
   const HitMaps* long_outline_pair() const {
     if (!has_long_pair_) return nullptr;
-    return long_outline_ ? &long_outline_maps_ : &long_maps_;
+    return long_outline_maps_.width != 0 ? &long_outline_maps_ : &long_maps_;
   }
 
  private:
@@ -241,9 +243,9 @@ class ScanFlow {
   double long_lag_scale_ = 1.0;                   // this cycle's dt over the long baseline's
   HitMaps maps_;                                  // the previous scan and this one
   HitMaps long_maps_;                             // the oldest remembered scan and this one
-  bool short_outline_ = false;                    // the previous scan has hits off its outline
-  bool long_outline_ = false;                     // the oldest one has
-  HitMaps outline_maps_;                          // their outlines, laid only then
+  // The previous and the oldest scan's outlines, laid (width > 0) only when the scan has hits
+  // off its outline.
+  HitMaps outline_maps_;
   HitMaps long_outline_maps_;
   mutable std::vector<std::int32_t> cell_index_;  // MeasureCells' workspace
 };
