@@ -212,15 +212,16 @@ HiddenBody BodyOfCluster(std::span<const std::size_t> cluster, const GridLayers&
   return body;
 }
 
-// Step 5: the movers the scan lost between two cycles. A mover that leaves the field of view or
-// goes behind an occluder within a cycle or two (a car at 30 m/s relative to the ego) is gone
-// from the rigid clusters before half of one is unobserved: eq. 8 spreads its unobserved cells
-// under the clusters' occupancy at once. Its measurements are where it was: the newest, measured
-// within confirm_s, and those overlapping it measured within confirm_s before it, if at least
-// confirm_min_measurements. Carried at their mean velocity (a car's measurements scatter by
-// +-0.7 m/s; their mean is within 0.1 of the truth on fast-car), it is where a body without new
-// evidence would be. Each group is looked at once, newest first; a group remembered leaves the
-// confirmed movers.
+// Step 5: the movers lost before their shadow. A mover that leaves the field of view or goes
+// behind an occluder within a cycle or two (a car at 30 m/s relative to the ego) is gone from the
+// rigid clusters before half of one is unobserved: eq. 8 spreads its unobserved cells under the
+// clusters' occupancy at once; a far walker that a nearer one starts to cover drops under the
+// clusters' three cells while half in view, and reaches the shadow some cycles later. Its
+// measurements are where it was: the newest, measured within lost_memory_s, and those
+// overlapping it measured within confirm_s before it, if at least confirm_min_measurements.
+// Carried at their mean velocity (a car's measurements scatter by +-0.7 m/s; their mean is within
+// 0.1 of the truth on fast-car), it is where a body without new evidence would be. Each group is
+// looked at once, newest first; a group remembered leaves the confirmed movers.
 void RememberLostMovers(std::vector<HiddenBody>& confirmed, std::vector<HiddenBody>& bodies,
                         const ScrollingGridGeometry& g, const MeasurementGrid& z,
                         const CellSet& measured_now, const HiddenBodyOptions& options) {
@@ -238,7 +239,7 @@ void RememberLostMovers(std::vector<HiddenBody>& confirmed, std::vector<HiddenBo
   std::vector<bool> remembered(confirmed.size(), false);
   for (const std::size_t r : newest_first) {
     const HiddenBody& newest = confirmed[r];
-    if (looked_at[r] || newest.hidden_s > options.confirm_s) continue;
+    if (looked_at[r] || newest.hidden_s > options.lost_memory_s) continue;
     std::vector<std::size_t> group;
     for (std::size_t q = 0; q < confirmed.size(); ++q) {
       if (!looked_at[q] && confirmed[q].hidden_s - newest.hidden_s <= options.confirm_s &&
@@ -288,6 +289,8 @@ void HiddenBodyOptions::Validate(const std::string& source) const {
   require(share(drop_free_share), "drop_free_share", "must be in [0, 1]");
   require(std::isfinite(confirm_s) && confirm_s >= 0.0, "confirm_s", "must be finite and >= 0");
   require(confirm_min_measurements >= 1, "confirm_min_measurements", "must be >= 1");
+  require(std::isfinite(lost_memory_s) && lost_memory_s >= 0.0, "lost_memory_s",
+          "must be finite and >= 0");
   require(shift_cells >= 0 && shift_cells <= 4, "shift_cells", "must be in [0, 4]");
 }
 
@@ -315,11 +318,13 @@ void HiddenBodies::Update(GridLayers& layers, const FilterLayerIds& ids, const M
   }
   bodies_ = std::move(kept);
 
-  // The confirmed movers: carried, aged out, and this cycle's added. Kept twice confirm_s: step
-  // 5 counts a group's measurements within confirm_s before its newest.
+  // The confirmed movers: carried, aged out, and this cycle's added. Kept as long as step 5 may
+  // look at a newest measurement (lost_memory_s) and count confirm_s of measurements before it
+  // (step 4 counts confirm_s of them).
+  const double memory_s = options.lost_memory_s + options.confirm_s;
   std::erase_if(confirmed_, [&](HiddenBody& body) {
     Carry(body, dt_s, cells_per_m);
-    return body.hidden_s > 2.0 * options.confirm_s;
+    return body.hidden_s > memory_s;
   });
   for (const MeasuredBody& m : found.measured) {
     if (m.cells.empty()) continue;
@@ -347,7 +352,7 @@ void HiddenBodies::Update(GridLayers& layers, const FilterLayerIds& ids, const M
     bodies_.push_back(BodyOfCluster(cluster, layers, ids));
   }
 
-  // 5: remember the movers lost between two cycles.
+  // 5: remember the movers lost before their shadow.
   RememberLostMovers(confirmed_, bodies_, g, z, measured_now, options);
 }
 

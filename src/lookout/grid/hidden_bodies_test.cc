@@ -219,6 +219,45 @@ TEST(HiddenBodiesTest, AMoverLostBetweenTwoCyclesIsRememberedFromItsMeasurements
   EXPECT_TRUE(seen_free.stage.bodies().empty());
 }
 
+TEST(HiddenBodiesTest, AMoverLostInViewIsRememberedWhenItsShadowComesLater) {
+  // Measured three times (left column 7, 8, 9), then no longer a cluster though the scan still
+  // hits it (a far walker a nearer one starts to cover), seven cycles (0.56 s, more than
+  // confirm_s) in view; then a shadow over it. lost_memory_s: how long the newest measurement
+  // is looked for.
+  const auto lose_in_view_then_hide = [](HiddenBodyScene& scene) {
+    for (int x0 = 7; x0 <= 9; ++x0) {
+      scene.HoldBodyAt(x0);
+      scene.Update(scene.Scan(scene.BodyCells(x0), {}),
+                   {MeasuredBody{scene.BodyCells(x0), kBodySpeedMps, 0.0}});
+    }
+    for (int x0 = 10; x0 <= 16; ++x0) {
+      scene.LoseBody();
+      scene.Update(scene.Scan(scene.BodyCells(x0), {}), {});
+      EXPECT_TRUE(scene.stage.bodies().empty()) << "in view at " << x0;
+    }
+    scene.Update(scene.Scan({}, scene.Shadow(0)), {});  // left column 17, hidden
+  };
+  HiddenBodyScene remembered;
+  ASSERT_GT(7 * kBodyDtS, remembered.options.confirm_s);
+  ASSERT_LE(8 * kBodyDtS, remembered.options.lost_memory_s);
+  lose_in_view_then_hide(remembered);
+  ASSERT_EQ(remembered.stage.bodies().size(), 1u);
+  EXPECT_NEAR(remembered.stage.bodies()[0].velocity_x_mps, kBodySpeedMps, 1e-9);
+  remembered.Update(remembered.Scan({}, remembered.Shadow(0)), {});  // carried to 18
+  for (int y = 20; y <= 22; ++y) {
+    for (int x = 18; x <= 20; ++x) {
+      EXPECT_FLOAT_EQ(remembered.Occupancy(x, y), 0.9f) << "(" << x << ", " << y << ")";
+    }
+    EXPECT_LE(remembered.Occupancy(17, y), 0.55f);
+    EXPECT_LE(remembered.Occupancy(21, y), 0.55f);
+  }
+
+  HiddenBodyScene forgotten;  // looked for no longer than the confirmation's window
+  forgotten.options.lost_memory_s = forgotten.options.confirm_s;
+  lose_in_view_then_hide(forgotten);
+  EXPECT_TRUE(forgotten.stage.bodies().empty());
+}
+
 TEST(HiddenBodiesTest, WhereTheScanSeesItFreeItIsNotThere) {
   // The shadow's front edge at x = 14: carried one cell a cycle, the body's leading column
   // reaches it on the second cycle and is seen free there; one cell back it is not: shifted back.
@@ -256,6 +295,9 @@ TEST(HiddenBodiesTest, ForgottenWhenMeasuredAgainOrHiddenTooLong) {
 
   HiddenBodyScene old;
   old.options.max_hidden_s = 0.5;  // six cycles
+  // Step 5 looks for a lost mover this long after its newest measurement: longer than the body
+  // is carried here, it would remember it again from the measurements made before it hid.
+  old.options.lost_memory_s = old.options.max_hidden_s;
   old.SeeThenHide(10, 0);
   ASSERT_EQ(old.stage.bodies().size(), 1u);
   for (int k = 1; k <= 6; ++k) old.Update(old.Scan({}, old.Shadow(0)), {});
@@ -315,6 +357,9 @@ TEST(HiddenBodyOptionsTest, ValidateNamesTheField) {
   EXPECT_THROW(o.Validate(), InputError);
   o = {};
   o.shift_cells = 5;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.lost_memory_s = -0.1;
   EXPECT_THROW(o.Validate(), InputError);
 }
 
