@@ -74,6 +74,10 @@ MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipelin
       }
     }
   }
+  if (recorder) {
+    result.messages_per_topic = recorder->message_counts();
+    recorder->Finish();
+  }
   return result;
 }
 

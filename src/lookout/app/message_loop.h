@@ -18,8 +18,11 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "lookout/app/pipeline.h"
@@ -56,7 +59,9 @@ struct LidarCycle {
 };
 
 struct MessageLoopOptions {
-  io::Recorder* recorder = nullptr;  // none: nothing recorded
+  // None: nothing recorded. Finished (io::Recorder::Finish) after the last message: a caller
+  // records nothing after the loop, and every caller finished it right after.
+  io::Recorder* recorder = nullptr;
   // After each lidar cycle and its recording: scoring, truth, snapshots, progress.
   std::function<void(const LidarCycle&)> after_cycle;
 };
@@ -64,6 +69,7 @@ struct MessageLoopOptions {
 struct MessageLoopResult {
   std::vector<double> step_ms;  // wall time of the pipeline's step, one per lidar scan
   double after_cycle_s = 0.0;   // wall time spent in the callback
+  std::map<std::string, std::uint64_t> messages_per_topic;  // as recorded; none without a recorder
 };
 
 MessageLoopResult RunMessageLoop(const SensorStreams& streams, Pipeline& pipeline,

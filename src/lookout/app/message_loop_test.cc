@@ -2,10 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
+
+#include "lookout/io/mcap_reader.h"
+#include "lookout/io/recorder.h"
 
 namespace lookout::app {
 namespace {
@@ -59,6 +66,32 @@ TEST(MessageLoopTest, MergesStreamsByStampThenSensorOrderAndCallsBackAfterEachSc
   EXPECT_EQ(seen, want);
   EXPECT_EQ(cycles, (std::vector<std::size_t>{0, 1, 2, 3}));
   EXPECT_EQ(result.step_ms.size(), 4u);
+}
+
+TEST(MessageLoopTest, RecordsEveryMessageAndFinishesTheRecording) {
+  const auto lidar = At<LidarScan>({0, 100});
+  const auto stereo = At<StereoFrame>({50});
+  const auto odometry = At<EgoOdometry>({0, 50, 100});
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "lookout_message_loop_test.mcap").string();
+  Seen seen;
+  Pipeline pipeline;
+  pipeline.Add(std::make_unique<ProbeStage>(&seen));
+  io::Recorder recorder(path);
+  MessageLoopOptions options;
+  options.recorder = &recorder;
+  const MessageLoopResult result =
+      RunMessageLoop(SensorStreams{lidar, stereo, odometry}, pipeline, options);
+
+  const std::map<std::string, std::uint64_t> want = {
+      {io::topics::kLidarScan, 2}, {io::topics::kStereoObjects, 1}, {io::topics::kOdometry, 3}};
+  EXPECT_EQ(result.messages_per_topic, want);
+  // Finished: the file is whole (its summary written), without the caller finishing it.
+  const io::McapContents file = io::ReadMcapFile(path);
+  EXPECT_EQ(file.messages.size(), 6u);
+  ASSERT_TRUE(file.statistics.has_value());
+  EXPECT_EQ(file.statistics->message_count, 6u);
+  std::filesystem::remove(path);
 }
 
 TEST(MessageLoopTest, DeliversEveryMessageEvenAtTheLargestStampAndWithEmptyStreams) {

@@ -100,10 +100,7 @@ ReplayResult RunInArena(const io::ReplayLog& log, Pipeline& pipeline,
   const MessageLoopResult loop =
       RunMessageLoop(SensorStreams{log.lidar, log.stereo, log.odometry}, pipeline, loop_options);
 
-  if (recorder) {
-    result.messages_per_topic = recorder->message_counts();
-    recorder->Finish();
-  }
+  result.messages_per_topic = loop.messages_per_topic;
   // Scoring, the people's and the poses' recording and progress are not the pipeline's time.
   result.wall_s = SecondsSince(run_start) - loop.after_cycle_s;
   std::map<std::string, double>& m = result.metrics.values;

@@ -188,10 +188,7 @@ RunResult RunInArena(const sim::Scenario& scenario, Pipeline& pipeline, const Ru
   const MessageLoopResult loop =
       RunMessageLoop(SensorStreams{log.lidar, log.stereo, log.odometry}, pipeline, loop_options);
 
-  if (recorder) {
-    result.messages_per_topic = recorder->message_counts();
-    recorder->Finish();
-  }
+  result.messages_per_topic = loop.messages_per_topic;
   // Scoring, snapshots and progress are not the pipeline's time.
   result.wall_s = SecondsSince(run_start) - loop.after_cycle_s;
   result.metrics.scenario = scenario.name;
