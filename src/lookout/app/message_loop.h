@@ -14,7 +14,8 @@
 //
 // Recording, when a recorder is given: every message as it is delivered; after each lidar
 // cycle, this scan's lidar objects, the tracks and the risk step when they ran, a warning event
-// when the level changed, and the grid's belief at every kRecordGridEvery-th scan.
+// when the level changed, and the grid's belief at every kRecordGridEvery-th scan. After the
+// last message the recording is finished (io::Recorder::Finish): the loop is all a run records.
 
 #include <chrono>
 #include <cstddef>
@@ -59,9 +60,7 @@ struct LidarCycle {
 };
 
 struct MessageLoopOptions {
-  // None: nothing recorded. Finished (io::Recorder::Finish) after the last message: a caller
-  // records nothing after the loop, and every caller finished it right after.
-  io::Recorder* recorder = nullptr;
+  io::Recorder* recorder = nullptr;  // none: nothing recorded; finished after the last message
   // After each lidar cycle and its recording: scoring, truth, snapshots, progress.
   std::function<void(const LidarCycle&)> after_cycle;
 };
