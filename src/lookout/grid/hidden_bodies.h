@@ -88,10 +88,9 @@ struct HiddenBodyOptions {
   // Step 5 looks for a confirmed mover the clusters lost this long after its newest measurement
   // (carried at its measured velocity meanwhile): a walker lost in view while a nearer one
   // covers it goes into the shadow within a second (0.56 s on occluded-pedestrian's seed 36).
-  // confirm_s (0.5) lost that walker. A second: as long as the stage kept the measurements
-  // before. Over the catalogue and six other seeds (docs/grid.md, "A walker lost before its
-  // shadow") 0.75, 1.0 and 1.5 s each did better than 0.5; 1.5 better again in velocity and
-  // retention, and worse in the static world read moving.
+  // confirm_s (0.5) lost that walker. Over the catalogue and six other seeds (docs/grid.md, "A
+  // walker lost before its shadow") 0.75, 1.0 and 1.5 s each did better than 0.5; 1.5 better
+  // again in velocity and retention, and worse in the static world read moving: a second.
   double lost_memory_s = 1.0;
   // Where the scan sees some of the carried body's cells free, it is moved by up to this many
   // cells to where the fewest are (the body is where the scan does not contradict it).
